@@ -1,14 +1,111 @@
+/*---------------------------------------------------------------------------*\
+Application
+    spemFoam
+
+Description
+    Explicit solver of the smoothed particle element method (SPEM) for
+    fluid-structure interaction with free surfaces: fluids and solids on a
+    triangle mesh with the edge-based smoothed FEM, central-difference time
+    integration (paper sect. 2.1).
+
+Usage
+    spemFoam [-case dir]
+
+    Reads constant/spemMesh (from spemMeshConvert), constant/spemProperties,
+    constant/g, system/spemSchemes and system/controlDict:
+        deltaT          first (adjustTimeStep yes) or fixed time step [s]
+        adjustTimeStep  yes: deltaT = maxCo * stable step, bounded by
+                        maxDeltaT; no: a deltaT above maxCo times the stable
+                        step stops the run (default no)
+        maxCo           Courant number on the fastest wave speed (default 0.5)
+        maxDeltaT       upper bound on the adjusted step (default great)
+        logInterval     steps between log entries (default 100; every write
+                        time is logged too)
+    Writes <time>/spem/ (restart state), VTK/<case>.pvd (ParaView series)
+    and postProcessing/ (function objects of controlDict `functions`).
+
+\*---------------------------------------------------------------------------*/
+
 #include "argList.H"
 #include "Time.H"
-#include "triMesh.H"
+#include "spemModel.H"
 
 using namespace Foam;
 
 int main(int argc, char *argv[])
 {
+    argList::addNote
+    (
+        "Explicit smoothed particle element method (SPEM) solver for"
+        " fluid-structure interaction with free surfaces"
+    );
+    argList::noParallel();
+
     #include "setRootCase.H"
     #include "createTime.H"
-    triMesh mesh(triMesh::read(runTime));
-    Info<< "triangles " << mesh.nTriangles() << endl;
+
+    spemModel model(runTime);
+
+    const dictionary& controls = runTime.controlDict();
+    const bool adjustTimeStep =
+        controls.getOrDefault<Switch>("adjustTimeStep", false);
+    const scalar maxCo = controls.getOrDefault<scalar>("maxCo", 0.5);
+    const scalar maxDeltaT = controls.getOrDefault<scalar>("maxDeltaT", GREAT);
+    const label logInterval = controls.getOrDefault<label>("logInterval", 100);
+    if (!(maxCo > 0) || logInterval < 1)
+    {
+        FatalIOErrorInFunction(controls)
+            << "maxCo must be positive and logInterval at least 1"
+            << exit(FatalIOError);
+    }
+
+    // Forces and stable step of the initial state; the initial state goes
+    // to the ParaView series
+    model.evaluate();
+    model.write(runTime.timeIndex() == 0);
+
+    Info<< "Starting time loop" << nl << endl;
+
+    label step = 0;
+    while (runTime.run())
+    {
+        const scalar stable = model.stableDeltaT();
+        if (adjustTimeStep)
+        {
+            runTime.setDeltaT(min(maxCo*stable, maxDeltaT));
+        }
+        else if (runTime.deltaTValue() > maxCo*stable*(1 + 1e-12))
+        {
+            FatalIOErrorInFunction(controls)
+                << "deltaT " << runTime.deltaTValue()
+                << " exceeds the stable time step: Courant number "
+                << runTime.deltaTValue()/stable << " > maxCo " << maxCo
+                << " (stable deltaT at Courant number 1: " << stable << ")."
+                << nl << "    Reduce deltaT below " << maxCo*stable
+                << " or set adjustTimeStep yes." << exit(FatalIOError);
+        }
+
+        ++runTime;
+        ++step;
+
+        model.advance();
+        model.evaluate();
+        model.write();
+
+        if (step % logInterval == 0 || runTime.writeTime())
+        {
+            Info<< "Time = " << runTime.timeName() << nl
+                << "deltaT = " << runTime.deltaTValue()
+                << ", Courant number = " << runTime.deltaTValue()/stable
+                << ", step " << runTime.timeIndex() << nl;
+            model.report(Info);
+            Info<< nl << "ExecutionTime = " << runTime.elapsedCpuTime()
+                << " s  ClockTime = " << runTime.elapsedClockTime() << " s"
+                << nl << endl;
+        }
+        runTime.write();
+    }
+
+    Info<< "End\n" << endl;
     return 0;
 }

@@ -1,0 +1,637 @@
+#include "vtkSeriesWriter.H"
+
+// VTK only: no OpenFOAM header may be included in this file (OpenFOAM's Log
+// macro breaks vtkLogger.h), see vtkSeriesWriter.H
+#include <vtkCellArray.h>
+#include <vtkCellData.h>
+#include <vtkCellType.h>
+#include <vtkCompositeDataSet.h>
+#include <vtkDoubleArray.h>
+#include <vtkErrorCode.h>
+#include <vtkFieldData.h>
+#include <vtkIdTypeArray.h>
+#include <vtkInformation.h>
+#include <vtkMultiBlockDataSet.h>
+#include <vtkNew.h>
+#include <vtkPointData.h>
+#include <vtkPoints.h>
+#include <vtkPolyData.h>
+#include <vtkSmartPointer.h>
+#include <vtkUnstructuredGrid.h>
+#include <vtkXMLDataElement.h>
+#include <vtkXMLDataParser.h>
+#include <vtkXMLMultiBlockDataWriter.h>
+
+#include <algorithm>
+#include <charconv>
+#include <cmath>
+#include <cstring>
+#include <filesystem>
+#include <fstream>
+#include <set>
+#include <stdexcept>
+#include <system_error>
+
+namespace fs = std::filesystem;
+
+// * * * * * * * * * * * * * * * Local Functions * * * * * * * * * * * * * * //
+
+namespace
+{
+
+using namespace Foam::vtkOutput;
+
+//- Component names ParaView uses for a 6-component symmetric tensor
+const char* const symmTensorComponentNames[6] =
+    {"XX", "YY", "ZZ", "XY", "YZ", "XZ"};
+
+
+//- Shortest text that reads back to the same double, locale independent
+std::string timeName(const double time)
+{
+    char buffer[64];
+    const auto result = std::to_chars(buffer, buffer + sizeof(buffer), time);
+    return std::string(buffer, result.ptr);
+}
+
+
+//- <baseName>_<zero-padded index>
+std::string indexedName(const std::string& baseName, const std::size_t index)
+{
+    std::string digits = std::to_string(index);
+    const std::size_t width = seriesWriter::indexWidth;
+    if (digits.size() < width)
+    {
+        digits.insert(0, width - digits.size(), '0');
+    }
+    return baseName + '_' + digits;
+}
+
+
+//- Whether file is <baseName>_<digits>.vtm, i.e. written by a seriesWriter
+//  of this baseName; its index if so
+bool seriesIndex
+(
+    const std::string& file,
+    const std::string& baseName,
+    std::size_t& index
+)
+{
+    const std::string prefix = baseName + '_';
+    const std::string suffix = ".vtm";
+    if
+    (
+        file.size() <= prefix.size() + suffix.size()
+     || file.compare(0, prefix.size(), prefix) != 0
+     || file.compare(file.size() - suffix.size(), suffix.size(), suffix) != 0
+    )
+    {
+        return false;
+    }
+    const char* first = file.data() + prefix.size();
+    const char* last = file.data() + file.size() - suffix.size();
+    const auto result = std::from_chars(first, last, index);
+    return result.ec == std::errc() && result.ptr == last;
+}
+
+
+//- Text with the five XML special characters escaped, for attribute values
+std::string xmlEscape(const std::string& text)
+{
+    std::string escaped;
+    escaped.reserve(text.size());
+    for (const char c : text)
+    {
+        switch (c)
+        {
+            case '&': escaped += "&amp;"; break;
+            case '<': escaped += "&lt;"; break;
+            case '>': escaped += "&gt;"; break;
+            case '"': escaped += "&quot;"; break;
+            case '\'': escaped += "&apos;"; break;
+            default: escaped += c;
+        }
+    }
+    return escaped;
+}
+
+
+//- Entries of a collection file, in file order
+std::vector<seriesWriter::entry> readCollection(const fs::path& file)
+{
+    const auto failure = [&file](const std::string& why)
+    {
+        return std::runtime_error
+        (
+            "vtkOutput::seriesWriter: cannot restart from collection file "
+          + file.string() + ": " + why
+          + " (remove or repair it to start a new series)"
+        );
+    };
+
+    vtkNew<vtkXMLDataParser> parser;
+    parser->SetFileName(file.c_str());
+    if (!parser->Parse())
+    {
+        throw failure("not valid XML");
+    }
+
+    vtkXMLDataElement* root = parser->GetRootElement();
+    const char* type = root ? root->GetAttribute("type") : nullptr;
+    if
+    (
+        !root
+     || std::strcmp(root->GetName(), "VTKFile") != 0
+     || !type
+     || std::strcmp(type, "Collection") != 0
+    )
+    {
+        throw failure("not a <VTKFile type=\"Collection\">");
+    }
+    vtkXMLDataElement* collection = root->FindNestedElementWithName
+    (
+        "Collection"
+    );
+    if (!collection)
+    {
+        throw failure("no <Collection> element");
+    }
+
+    std::vector<seriesWriter::entry> entries;
+    const int n = collection->GetNumberOfNestedElements();
+    for (int i = 0; i < n; ++i)
+    {
+        vtkXMLDataElement* dataSet = collection->GetNestedElement(i);
+        if (std::strcmp(dataSet->GetName(), "DataSet") != 0)
+        {
+            continue;
+        }
+        const char* timestep = dataSet->GetAttribute("timestep");
+        const char* fileName = dataSet->GetAttribute("file");
+        if (!timestep || !fileName)
+        {
+            throw failure("<DataSet> without timestep or file");
+        }
+        seriesWriter::entry e{0, fileName};
+        const char* last = timestep + std::strlen(timestep);
+        const auto result = std::from_chars(timestep, last, e.time);
+        if (result.ec != std::errc() || result.ptr != last)
+        {
+            throw failure("timestep \"" + std::string(timestep) + "\"");
+        }
+        entries.push_back(std::move(e));
+    }
+    return entries;
+}
+
+
+//- Check what the VTK conversion relies on; a bad label or component count
+//  would otherwise give a file that crashes ParaView
+void checkFields
+(
+    const std::vector<field>& fields,
+    const std::size_t nTuples,
+    const std::string& blockName
+)
+{
+    std::set<std::string> names;
+    for (const field& f : fields)
+    {
+        const std::string where =
+            "vtkOutput::seriesWriter: field '" + f.name + "' of block '"
+          + blockName + "'";
+        if (f.name.empty())
+        {
+            throw std::invalid_argument
+            (
+                "vtkOutput::seriesWriter: field without name in block '"
+              + blockName + "'"
+            );
+        }
+        if (!names.insert(f.name).second)
+        {
+            // VTK would silently keep only the last array of a name
+            throw std::invalid_argument(where + " appears twice");
+        }
+        if
+        (
+            f.nComponents != 1 && f.nComponents != 2
+         && f.nComponents != 3 && f.nComponents != 6
+        )
+        {
+            throw std::invalid_argument
+            (
+                where + " has " + std::to_string(f.nComponents)
+              + " components; 1, 2, 3 or 6 expected"
+            );
+        }
+        if (nTuples > 0 && !f.values)
+        {
+            throw std::invalid_argument(where + " has no values");
+        }
+    }
+}
+
+
+//- A copy of a field as a VTK array; a 2D vector gets z = 0
+vtkSmartPointer<vtkDoubleArray> makeArray
+(
+    const field& f,
+    const std::size_t nTuples
+)
+{
+    const int nStored = f.nComponents == 2 ? 3 : f.nComponents;
+    auto array = vtkSmartPointer<vtkDoubleArray>::New();
+    array->SetName(f.name.c_str());
+    array->SetNumberOfComponents(nStored);
+    array->SetNumberOfTuples(vtkIdType(nTuples));
+    if (nTuples == 0)
+    {
+        return array;
+    }
+
+    // Performance-critical: plain loops over raw storage, no per-value
+    // virtual calls (one write may hold millions of tuples)
+    double* out = array->GetPointer(0);
+    if (f.nComponents == 2)
+    {
+        for (std::size_t i = 0; i < nTuples; ++i)
+        {
+            out[3*i] = f.values[2*i];
+            out[3*i + 1] = f.values[2*i + 1];
+            out[3*i + 2] = 0;
+        }
+    }
+    else
+    {
+        std::copy_n(f.values, nStored*nTuples, out);
+    }
+
+    if (f.nComponents == 6)
+    {
+        for (int c = 0; c < 6; ++c)
+        {
+            array->SetComponentName(c, symmTensorComponentNames[c]);
+        }
+    }
+    return array;
+}
+
+
+//- 2D positions, (x, y) interleaved, as VTK points with z = 0
+vtkSmartPointer<vtkPoints> makePoints(const double* xy, const std::size_t n)
+{
+    vtkNew<vtkDoubleArray> xyz;
+    xyz->SetNumberOfComponents(3);
+    xyz->SetNumberOfTuples(vtkIdType(n));
+    if (n > 0)
+    {
+        double* out = xyz->GetPointer(0);
+        for (std::size_t i = 0; i < n; ++i)
+        {
+            out[3*i] = xy[2*i];
+            out[3*i + 1] = xy[2*i + 1];
+            out[3*i + 2] = 0;
+        }
+    }
+    auto points = vtkSmartPointer<vtkPoints>::New();
+    points->SetData(xyz);
+    return points;
+}
+
+
+//- Add the fields to point or cell data
+void addFields
+(
+    vtkFieldData* data,
+    const std::vector<field>& fields,
+    const std::size_t nTuples
+)
+{
+    for (const field& f : fields)
+    {
+        data->AddArray(makeArray(f, nTuples));
+    }
+}
+
+
+//- The time as the "TimeValue" field-data array ParaView shows when a single
+//  .vtm is opened without the collection
+void addTimeValue(vtkDataSet* dataSet, const double time)
+{
+    vtkNew<vtkDoubleArray> timeValue;
+    timeValue->SetName("TimeValue");
+    timeValue->SetNumberOfTuples(1);
+    timeValue->SetValue(0, time);
+    dataSet->GetFieldData()->AddArray(timeValue);
+}
+
+
+//- A triangle block as an unstructured grid of VTK_TRIANGLE cells
+vtkSmartPointer<vtkUnstructuredGrid> makeTriangleGrid
+(
+    const triangleBlock& block,
+    const double time
+)
+{
+    const std::string where =
+        "vtkOutput::seriesWriter: triangle block '" + block.name + "'";
+    if (block.nPoints > 0 && !block.points)
+    {
+        throw std::invalid_argument(where + " has no points");
+    }
+    if (block.nTriangles > 0 && !block.triangles)
+    {
+        throw std::invalid_argument(where + " has no triangles");
+    }
+    checkFields(block.pointData, block.nPoints, block.name);
+    checkFields(block.cellData, block.nTriangles, block.name);
+
+    // Performance-critical: copy and range-check in one branch-free pass
+    const std::size_t nLabels = 3*block.nTriangles;
+    vtkNew<vtkIdTypeArray> connectivity;
+    connectivity->SetNumberOfValues(vtkIdType(nLabels));
+    bool inRange = true;
+    if (nLabels > 0)
+    {
+        vtkIdType* out = connectivity->GetPointer(0);
+        const vtkIdType nPoints = vtkIdType(block.nPoints);
+        for (std::size_t i = 0; i < nLabels; ++i)
+        {
+            const vtkIdType label = block.triangles[i];
+            inRange &= (label >= 0) & (label < nPoints);
+            out[i] = label;
+        }
+    }
+    if (!inRange)
+    {
+        const auto bad = std::find_if
+        (
+            block.triangles, block.triangles + nLabels,
+            [&block](int label)
+            {
+                return label < 0 || std::size_t(label) >= block.nPoints;
+            }
+        );
+        throw std::invalid_argument
+        (
+            where + ": triangle " + std::to_string((bad - block.triangles)/3)
+          + " has node label " + std::to_string(*bad) + ", out of [0, "
+          + std::to_string(block.nPoints) + ")"
+        );
+    }
+
+    vtkNew<vtkCellArray> triangles;
+    triangles->SetData(3, connectivity);
+
+    auto grid = vtkSmartPointer<vtkUnstructuredGrid>::New();
+    grid->SetPoints(makePoints(block.points, block.nPoints));
+    grid->SetCells(VTK_TRIANGLE, triangles);
+    addFields(grid->GetPointData(), block.pointData, block.nPoints);
+    addFields(grid->GetCellData(), block.cellData, block.nTriangles);
+    addTimeValue(grid, time);
+    return grid;
+}
+
+
+//- A particle block as poly data with one vertex cell per particle, so that
+//  ParaView shows it in every representation, not only "Points"
+vtkSmartPointer<vtkPolyData> makeParticleCloud
+(
+    const particleBlock& block,
+    const double time
+)
+{
+    if (block.nParticles > 0 && !block.positions)
+    {
+        throw std::invalid_argument
+        (
+            "vtkOutput::seriesWriter: particle block '" + block.name
+          + "' has no positions"
+        );
+    }
+    checkFields(block.pointData, block.nParticles, block.name);
+
+    vtkNew<vtkIdTypeArray> connectivity;
+    connectivity->SetNumberOfValues(vtkIdType(block.nParticles));
+    if (block.nParticles > 0)
+    {
+        vtkIdType* out = connectivity->GetPointer(0);
+        for (std::size_t i = 0; i < block.nParticles; ++i)
+        {
+            out[i] = vtkIdType(i);
+        }
+    }
+    vtkNew<vtkCellArray> vertices;
+    vertices->SetData(1, connectivity);
+
+    auto cloud = vtkSmartPointer<vtkPolyData>::New();
+    cloud->SetPoints(makePoints(block.positions, block.nParticles));
+    cloud->SetVerts(vertices);
+    addFields(cloud->GetPointData(), block.pointData, block.nParticles);
+    addTimeValue(cloud, time);
+    return cloud;
+}
+
+} // End anonymous namespace
+
+
+// * * * * * * * * * * * * * Private Member Functions  * * * * * * * * * * * //
+
+void Foam::vtkOutput::seriesWriter::writeCollection() const
+{
+    // Written aside and renamed over the old file (atomic on POSIX), so that
+    // ParaView or a crash never sees a half-written collection
+    const fs::path file = collectionFile();
+    fs::path temporary = file;
+    temporary += ".tmp";
+    {
+        std::ofstream os(temporary, std::ios::out | std::ios::trunc);
+        os  << "<?xml version=\"1.0\"?>\n"
+            << "<VTKFile type=\"Collection\" version=\"0.1\""
+            << " byte_order=\"LittleEndian\">\n"
+            << "  <Collection>\n";
+        for (const entry& e : entries_)
+        {
+            os  << "    <DataSet timestep=\"" << timeName(e.time)
+                << "\" file=\"" << xmlEscape(e.file) << "\"/>\n";
+        }
+        os  << "  </Collection>\n"
+            << "</VTKFile>\n";
+        os.close();
+        if (!os)
+        {
+            throw std::runtime_error
+            (
+                "vtkOutput::seriesWriter: cannot write " + temporary.string()
+            );
+        }
+    }
+
+    std::error_code ec;
+    fs::rename(temporary, file, ec);
+    if (ec)
+    {
+        throw std::runtime_error
+        (
+            "vtkOutput::seriesWriter: cannot rename " + temporary.string()
+          + " to " + file.string() + ": " + ec.message()
+        );
+    }
+}
+
+
+// * * * * * * * * * * * * * * * * Constructors  * * * * * * * * * * * * * * //
+
+Foam::vtkOutput::seriesWriter::seriesWriter
+(
+    const std::string& dir,
+    const std::string& baseName,
+    const double startTime
+)
+:
+    dir_(dir),
+    baseName_(baseName),
+    entries_(),
+    nextIndex_(0)
+{
+    if (baseName_.empty() || baseName_.find('/') != std::string::npos)
+    {
+        throw std::invalid_argument
+        (
+            "vtkOutput::seriesWriter: base name '" + baseName_
+          + "' must be a non-empty file name without '/'"
+        );
+    }
+
+    const fs::path file = collectionFile();
+    std::error_code ec;
+    if (!fs::exists(file, ec))
+    {
+        return;
+    }
+
+    const double tolerance = restartTimeTolerance*std::abs(startTime);
+    std::vector<entry> dropped;
+    for (entry& e : readCollection(file))
+    {
+        if (e.time >= startTime - tolerance)
+        {
+            dropped.push_back(std::move(e));
+        }
+        else
+        {
+            entries_.push_back(std::move(e));
+        }
+    }
+
+    // Continue after the kept entries, and never onto a kept file
+    nextIndex_ = entries_.size();
+    for (const entry& e : entries_)
+    {
+        std::size_t index = 0;
+        if (seriesIndex(e.file, baseName_, index))
+        {
+            nextIndex_ = std::max(nextIndex_, index + 1);
+        }
+    }
+
+    if (!dropped.empty())
+    {
+        writeCollection();
+
+        // Only files of our own naming: the collection is not trusted to
+        // point at nothing else
+        for (const entry& e : dropped)
+        {
+            std::size_t index = 0;
+            if (seriesIndex(e.file, baseName_, index))
+            {
+                const fs::path vtm = fs::path(dir_)/e.file;
+                fs::remove(vtm, ec);
+                fs::remove_all(fs::path(dir_)/vtm.stem(), ec);
+            }
+        }
+    }
+}
+
+
+// * * * * * * * * * * * * * * * Member Functions  * * * * * * * * * * * * * //
+
+std::string Foam::vtkOutput::seriesWriter::collectionFile() const
+{
+    return (fs::path(dir_)/(baseName_ + ".pvd")).string();
+}
+
+
+void Foam::vtkOutput::seriesWriter::write
+(
+    const double time,
+    const std::vector<triangleBlock>& triangleBlocks,
+    const std::vector<particleBlock>& particleBlocks
+)
+{
+    // Convert everything first: bad input throws before the disk is touched
+    vtkNew<vtkMultiBlockDataSet> blocks;
+    blocks->SetNumberOfBlocks
+    (
+        unsigned(triangleBlocks.size() + particleBlocks.size())
+    );
+    unsigned blocki = 0;
+    for (const triangleBlock& block : triangleBlocks)
+    {
+        blocks->SetBlock(blocki, makeTriangleGrid(block, time));
+        blocks->GetMetaData(blocki)->Set
+        (
+            vtkCompositeDataSet::NAME(), block.name.c_str()
+        );
+        ++blocki;
+    }
+    for (const particleBlock& block : particleBlocks)
+    {
+        blocks->SetBlock(blocki, makeParticleCloud(block, time));
+        blocks->GetMetaData(blocki)->Set
+        (
+            vtkCompositeDataSet::NAME(), block.name.c_str()
+        );
+        ++blocki;
+    }
+
+    const std::string stem = indexedName(baseName_, nextIndex_);
+    const fs::path vtm = fs::path(dir_)/(stem + ".vtm");
+
+    std::error_code ec;
+    fs::create_directories(dir_, ec);
+    if (ec)
+    {
+        throw std::runtime_error
+        (
+            "vtkOutput::seriesWriter: cannot create " + dir_ + ": "
+          + ec.message()
+        );
+    }
+    // Pieces left by an earlier run under this index would linger otherwise
+    fs::remove_all(fs::path(dir_)/stem, ec);
+
+    vtkNew<vtkXMLMultiBlockDataWriter> writer;
+    writer->SetFileName(vtm.c_str());
+    writer->SetInputData(blocks);
+    writer->SetDataModeToAppended();
+    writer->EncodeAppendedDataOff();
+    writer->SetCompressorTypeToZLib();
+    if (writer->Write() != 1 || writer->GetErrorCode() != vtkErrorCode::NoError)
+    {
+        throw std::runtime_error
+        (
+            "vtkOutput::seriesWriter: cannot write " + vtm.string() + ": "
+          + vtkErrorCode::GetStringFromErrorCode(writer->GetErrorCode())
+        );
+    }
+
+    entries_.push_back({time, stem + ".vtm"});
+    ++nextIndex_;
+    writeCollection();
+}
+
+
+// ************************************************************************* //

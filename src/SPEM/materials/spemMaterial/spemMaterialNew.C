@@ -1,0 +1,32 @@
+#include "spemMaterial.H"
+
+Foam::autoPtr<Foam::spemMaterial> Foam::spemMaterial::New
+(
+    const word& name,
+    const dictionary& dict
+)
+{
+    const word modelType(dict.get<word>("model"));
+
+    if (!dictionaryConstructorTablePtr_)
+    {
+        FatalErrorInFunction
+            << "The material selection table is empty: libSPEM was not"
+            << " loaded (linked with --as-needed?)" << exit(FatalError);
+    }
+
+    auto cstrIter = dictionaryConstructorTablePtr_->cfind(modelType);
+
+    if (!cstrIter.found())
+    {
+        FatalIOErrorInLookup
+        (
+            dict,
+            "model",
+            modelType,
+            *dictionaryConstructorTablePtr_
+        ) << exit(FatalIOError);
+    }
+
+    return cstrIter()(name, dict);
+}

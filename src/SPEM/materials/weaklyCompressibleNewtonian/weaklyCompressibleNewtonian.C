@@ -1,0 +1,89 @@
+#include "weaklyCompressibleNewtonian.H"
+#include "addToRunTimeSelectionTable.H"
+
+namespace Foam
+{
+    defineTypeNameAndDebug(weaklyCompressibleNewtonian, 0);
+    addToRunTimeSelectionTable
+    (
+        spemMaterial,
+        weaklyCompressibleNewtonian,
+        dictionary
+    );
+}
+
+
+Foam::weaklyCompressibleNewtonian::weaklyCompressibleNewtonian
+(
+    const word& name,
+    const dictionary& dict
+)
+:
+    spemMaterial(name, dict),
+    c_(readPositive("c")),
+    mu_(dict.getOrDefault<scalar>("mu", 0))
+{
+    if (mu_ < 0)
+    {
+        FatalIOErrorInFunction(dict)
+            << "Entry 'mu' of region " << name << " must not be negative"
+            << exit(FatalIOError);
+    }
+}
+
+
+bool Foam::weaklyCompressibleNewtonian::stress
+(
+    const label begin, const label end, const scalar* grad,
+    const scalar* area, const scalar* mass, scalar* stress
+) const
+{
+    const scalar c2 = c_*c_, rho0 = rho_, twoMu = 2*mu_;
+    #pragma omp parallel for schedule(static)
+    for (label k = begin; k < end; ++k)
+    {
+        const scalar* g = grad + 4*k;
+        const scalar p = c2*(mass[k]/area[k] - rho0);           // eq. 7
+        const scalar div3 = (g[0] + g[3])/3;
+        scalar* s = stress + 4*k;
+        s[0] = -p + twoMu*(g[0] - div3);                         // eqs. 9-10
+        s[1] = 0.5*twoMu*(g[1] + g[2]);
+        s[2] = s[1];
+        s[3] = -p + twoMu*(g[3] - div3);
+    }
+    return true;
+}
+
+
+void Foam::weaklyCompressibleNewtonian::cauchyStress
+(
+    const label begin, const label end, const scalar* grad,
+    const scalar* area, const scalar* mass, scalar* sigma6,
+    scalar* pressure
+) const
+{
+    for (label k = begin; k < end; ++k)
+    {
+        const scalar* g = grad + 4*k;
+        const scalar p = c_*c_*(mass[k]/area[k] - rho_);
+        const scalar div3 = (g[0] + g[3])/3;
+        scalar* s = sigma6 + 6*(k - begin);
+        s[0] = -p + 2*mu_*(g[0] - div3);
+        s[1] = -p + 2*mu_*(g[3] - div3);
+        s[2] = -p - 2*mu_*div3;
+        s[3] = mu_*(g[1] + g[2]);
+        s[4] = 0;
+        s[5] = 0;
+        pressure[k - begin] = p;
+    }
+}
+
+
+void Foam::weaklyCompressibleNewtonian::density
+(
+    const label begin, const label end, const scalar* grad,
+    const scalar* area, const scalar* mass, scalar* rho
+) const
+{
+    for (label k = begin; k < end; ++k) rho[k - begin] = mass[k]/area[k];
+}

@@ -1,0 +1,670 @@
+#include "elementModel.H"
+#include "error.H"
+
+#include <cmath>
+#include <limits>
+#include <numeric>
+#include <sstream>
+
+// * * * * * * * * * * * * * * * Local Functions * * * * * * * * * * * * * * //
+
+namespace
+{
+
+using Foam::scalar;
+using Foam::label;
+
+//- Area and A*grad(N_a) of a triangle: A grad N_a is half the opposite edge
+//  rotated outward, so no division is needed. Returns the area.
+inline scalar triangleAreaGradN
+(
+    const scalar* x0, const scalar* x1, const scalar* x2, scalar* AgradN
+)
+{
+    AgradN[0] = 0.5*(x1[1] - x2[1]);
+    AgradN[1] = 0.5*(x2[0] - x1[0]);
+    AgradN[2] = 0.5*(x2[1] - x0[1]);
+    AgradN[3] = 0.5*(x0[0] - x2[0]);
+    AgradN[4] = 0.5*(x0[1] - x1[1]);
+    AgradN[5] = 0.5*(x1[0] - x0[0]);
+    return 0.5*((x1[0] - x0[0])*(x2[1] - x0[1]) - (x2[0] - x0[0])*(x1[1] - x0[1]));
+}
+
+//- Smallest altitude of a triangle, the length of its stability limit
+inline scalar minAltitude
+(
+    const scalar* x0, const scalar* x1, const scalar* x2, const scalar area
+)
+{
+    auto len2 = [](const scalar* a, const scalar* b)
+    {
+        return (a[0] - b[0])*(a[0] - b[0]) + (a[1] - b[1])*(a[1] - b[1]);
+    };
+    const scalar l2 = std::max({len2(x0, x1), len2(x1, x2), len2(x2, x0)});
+    return 2*area/std::sqrt(l2);
+}
+
+//- A_e grad w = sum_a w_a (x) A grad N_a, row-major g[2i + j] = dw_i/dx_j
+inline void areaGradient
+(
+    const scalar* AgradN, const scalar* w0, const scalar* w1, const scalar* w2,
+    scalar* g
+)
+{
+    for (int i = 0; i < 2; ++i)
+    {
+        for (int j = 0; j < 2; ++j)
+        {
+            g[2*i + j] = w0[i]*AgradN[j] + w1[i]*AgradN[2 + j] + w2[i]*AgradN[4 + j];
+        }
+    }
+}
+
+} // End anonymous namespace
+
+
+// * * * * * * * * * * * * * Private Member Functions  * * * * * * * * * * * //
+
+void Foam::elementModel::build(const triMesh& mesh)
+{
+    const label nTri = mesh.nTriangles();
+    const label nReg = mesh.nRegions();
+    const std::vector<label>& tri = mesh.triangles();
+    const std::vector<label>& triRegion = mesh.triangleRegion();
+
+    if (materials_.size() != nReg)
+    {
+        FatalErrorInFunction
+            << "Mesh has " << nReg << " regions but " << materials_.size()
+            << " materials were given" << exit(FatalError);
+    }
+
+    // Elements ordered by region (stable: keeps the mesh's locality)
+    elemTriangle_.resize(nTri);
+    std::iota(elemTriangle_.begin(), elemTriangle_.end(), 0);
+    std::stable_sort
+    (
+        elemTriangle_.begin(), elemTriangle_.end(),
+        [&](label a, label b) { return triRegion[a] < triRegion[b]; }
+    );
+    std::vector<label> triElem(nTri);
+    for (label e = 0; e < nTri; ++e) triElem[elemTriangle_[e]] = e;
+
+    elemNodes_.resize(3*nTri);
+    for (label e = 0; e < nTri; ++e)
+    {
+        for (label a = 0; a < 3; ++a)
+        {
+            elemNodes_[3*e + a] = tri[3*elemTriangle_[e] + a];
+        }
+    }
+
+    // Smoothing domains: one per (edge, region) pair, ordered by region
+    const std::vector<label>& edgeTri = mesh.edgeTriangles();
+    const std::vector<label>& triEdges = mesh.triangleEdges();
+    const label nEdge = mesh.nEdges();
+
+    // For each region, the domains as (edge, element pair)
+    std::vector<std::vector<std::array<label, 3>>> regionDomains(nReg);
+    for (label k = 0; k < nEdge; ++k)
+    {
+        const label t0 = edgeTri[2*k], t1 = edgeTri[2*k + 1];
+        if (t1 >= 0 && triRegion[t0] == triRegion[t1])
+        {
+            regionDomains[triRegion[t0]].push_back
+            ({k, triElem[t0], triElem[t1]});
+        }
+        else
+        {
+            regionDomains[triRegion[t0]].push_back({k, triElem[t0], -1});
+            if (t1 >= 0)
+            {
+                regionDomains[triRegion[t1]].push_back({k, triElem[t1], -1});
+            }
+        }
+    }
+
+    regions_.setSize(nReg);
+    label nDom = 0;
+    for (label r = 0; r < nReg; ++r) nDom += label(regionDomains[r].size());
+    domainElems_.assign(2*nDom, -1);
+    elemDomains_.assign(3*nTri, -1);
+    label d = 0, e = 0;
+    for (label r = 0; r < nReg; ++r)
+    {
+        region& reg = regions_[r];
+        reg.name = mesh.regionNames()[r];
+        reg.elemBegin = e;
+        while (e < nTri && triRegion[elemTriangle_[e]] == r) ++e;
+        reg.elemEnd = e;
+        reg.domainBegin = d;
+        for (const auto& dom : regionDomains[r])
+        {
+            domainElems_[2*d] = dom[1];
+            domainElems_[2*d + 1] = dom[2];
+            for (label side = 1; side < 3; ++side)
+            {
+                const label el = dom[side];
+                if (el < 0) continue;
+                const label t = elemTriangle_[el];
+                for (label i = 0; i < 3; ++i)
+                {
+                    if (triEdges[3*t + i] == dom[0]) elemDomains_[3*el + i] = d;
+                }
+            }
+            ++d;
+        }
+        reg.domainEnd = d;
+        regionDomains[r].clear();
+        regionDomains[r].shrink_to_fit();
+    }
+
+    // Domain of each boundary segment (its edge has one triangle)
+    segmentDomain_.assign(mesh.nSegments(), -1);
+    for (label s = 0; s < mesh.nSegments(); ++s)
+    {
+        const label k = mesh.segmentEdge()[s];
+        const label el = triElem[edgeTri[2*k]];
+        const label t = elemTriangle_[el];
+        for (label i = 0; i < 3; ++i)
+        {
+            if (triEdges[3*t + i] == k) segmentDomain_[s] = elemDomains_[3*el + i];
+        }
+    }
+
+    // Node-element adjacency
+    nodeElemStart_.assign(nNodes_ + 1, 0);
+    for (label n : elemNodes_) ++nodeElemStart_[n + 1];
+    for (label n = 0; n < nNodes_; ++n) nodeElemStart_[n + 1] += nodeElemStart_[n];
+    nodeElems_.resize(3*nTri);
+    {
+        std::vector<label> fill(nodeElemStart_.begin(), nodeElemStart_.end() - 1);
+        for (label h = 0; h < 3*nTri; ++h) nodeElems_[fill[elemNodes_[h]]++] = h;
+    }
+
+    // Reference geometry, lumped masses, domain masses, solid time scale
+    elemAreaGradN_.resize(6*nTri);
+    elemArea_.resize(nTri);
+    elemAreaGrad_.assign(4*nTri, 0);
+    elemForce_.assign(6*nTri, 0);
+    nodeMass_.assign(nNodes_, 0);
+    domainArea_.assign(nDom, 0);
+    domainMass_.assign(nDom, 0);
+    domainGrad_.assign(4*nDom, 0);
+    domainStress_.assign(4*nDom, 0);
+    solidTimeScale_ = std::numeric_limits<scalar>::max();
+
+    for (label r = 0; r < nReg; ++r)
+    {
+        const spemMaterial& mat = materials_[r];
+        const scalar rho = mat.rho();
+        for (label el = regions_[r].elemBegin; el < regions_[r].elemEnd; ++el)
+        {
+            const label* n = &elemNodes_[3*el];
+            const scalar A = triangleAreaGradN
+            (
+                &X_[2*n[0]], &X_[2*n[1]], &X_[2*n[2]], &elemAreaGradN_[6*el]
+            );
+            elemArea_[el] = A;
+            for (label a = 0; a < 3; ++a) nodeMass_[n[a]] += rho*A/3;
+            if (!mat.isFluid())
+            {
+                const scalar h = minAltitude(&X_[2*n[0]], &X_[2*n[1]], &X_[2*n[2]], A);
+                solidTimeScale_ = std::min(solidTimeScale_, h/mat.waveSpeed());
+            }
+        }
+        for (label k = regions_[r].domainBegin; k < regions_[r].domainEnd; ++k)
+        {
+            scalar A = elemArea_[domainElems_[2*k]];
+            if (domainElems_[2*k + 1] >= 0) A += elemArea_[domainElems_[2*k + 1]];
+            domainArea_[k] = A/3;
+            domainMass_[k] = rho*A/3;
+        }
+    }
+}
+
+
+bool Foam::elementModel::elementPass()
+{
+    const scalar* x = x_[cur_].data();
+    const scalar* v = v_[cur_].data();
+    bool ok = true;
+    scalar timeScale = solidTimeScale_;
+
+    for (label r = 0; r < regions_.size(); ++r)
+    {
+        const spemMaterial& mat = materials_[r];
+        const label begin = regions_[r].elemBegin, end = regions_[r].elemEnd;
+
+        if (mat.isFluid())
+        {
+            // Performance critical: every fluid element, every step
+            const scalar c = mat.waveSpeed();
+            const scalar nu = mat.kinematicViscosity();
+            scalar hMin = std::numeric_limits<scalar>::max();
+            bool regionOk = true;
+            #pragma omp parallel for schedule(static) reduction(min: hMin) reduction(&&: regionOk)
+            for (label el = begin; el < end; ++el)
+            {
+                const label* n = &elemNodes_[3*el];
+                const scalar* x0 = x + 2*n[0];
+                const scalar* x1 = x + 2*n[1];
+                const scalar* x2 = x + 2*n[2];
+                scalar* AgradN = &elemAreaGradN_[6*el];
+                const scalar A = triangleAreaGradN(x0, x1, x2, AgradN);
+                elemArea_[el] = A;
+                regionOk = regionOk && A > 0;
+                hMin = std::min(hMin, minAltitude(x0, x1, x2, A));
+                areaGradient
+                (
+                    AgradN, v + 2*n[0], v + 2*n[1], v + 2*n[2],
+                    &elemAreaGrad_[4*el]
+                );
+            }
+            if (!regionOk || !std::isfinite(hMin))
+            {
+                std::ostringstream os;
+                os  << "an element of fluid region " << regions_[r].name
+                    << " is inverted or degenerate (zero or negative area)";
+                failure_ = os.str();
+                ok = false;
+            }
+            timeScale = std::min(timeScale, hMin/c);
+            // Explicit viscous diffusion limit
+            if (nu > 0) timeScale = std::min(timeScale, 0.25*hMin*hMin/nu);
+        }
+        else
+        {
+            // Performance critical: every solid element, every step
+            const scalar* X = X_.data();
+            #pragma omp parallel for schedule(static)
+            for (label el = begin; el < end; ++el)
+            {
+                const label* n = &elemNodes_[3*el];
+                scalar u[3][2];
+                for (label a = 0; a < 3; ++a)
+                {
+                    u[a][0] = x[2*n[a]] - X[2*n[a]];
+                    u[a][1] = x[2*n[a] + 1] - X[2*n[a] + 1];
+                }
+                areaGradient
+                (
+                    &elemAreaGradN_[6*el], u[0], u[1], u[2], &elemAreaGrad_[4*el]
+                );
+            }
+        }
+    }
+    stableDeltaT_ = timeScale;
+    return ok;
+}
+
+
+bool Foam::elementModel::domainPass()
+{
+    bool ok = true;
+    for (label r = 0; r < regions_.size(); ++r)
+    {
+        const label begin = regions_[r].domainBegin, end = regions_[r].domainEnd;
+        const bool fluid = materials_[r].isFluid();
+
+        // Performance critical: every domain, every step (eq. 2)
+        #pragma omp parallel for schedule(static)
+        for (label k = begin; k < end; ++k)
+        {
+            const label e0 = domainElems_[2*k], e1 = domainElems_[2*k + 1];
+            scalar A = elemArea_[e0];
+            scalar g[4];
+            for (label i = 0; i < 4; ++i) g[i] = elemAreaGrad_[4*e0 + i];
+            if (e1 >= 0)
+            {
+                A += elemArea_[e1];
+                for (label i = 0; i < 4; ++i) g[i] += elemAreaGrad_[4*e1 + i];
+            }
+            const scalar invA = 1/A;
+            for (label i = 0; i < 4; ++i) domainGrad_[4*k + i] = g[i]*invA;
+            if (fluid) domainArea_[k] = A/3;
+        }
+
+        if
+        (
+            !materials_[r].stress
+            (
+                begin, end, domainGrad_.data(), domainArea_.data(),
+                domainMass_.data(), domainStress_.data()
+            )
+        )
+        {
+            failure_ = "a smoothing domain of solid region " + regions_[r].name
+              + " is inverted (det F <= 0)";
+            ok = false;
+        }
+    }
+    return ok;
+}
+
+
+void Foam::elementModel::forcePass()
+{
+    const label nEl = nElements();
+    const scalar third = 1.0/3.0;
+
+    // Performance critical: every element, every step (eq. 5)
+    #pragma omp parallel for schedule(static)
+    for (label el = 0; el < nEl; ++el)
+    {
+        const label* d = &elemDomains_[3*el];
+        scalar P[4];
+        for (label i = 0; i < 4; ++i)
+        {
+            P[i] = third*
+            (
+                domainStress_[4*d[0] + i] + domainStress_[4*d[1] + i]
+              + domainStress_[4*d[2] + i]
+            );
+        }
+        const scalar* AgradN = &elemAreaGradN_[6*el];
+        scalar* f = &elemForce_[6*el];
+        for (label a = 0; a < 3; ++a)
+        {
+            f[2*a] = -(P[0]*AgradN[2*a] + P[1]*AgradN[2*a + 1]);
+            f[2*a + 1] = -(P[2]*AgradN[2*a] + P[3]*AgradN[2*a + 1]);
+        }
+    }
+}
+
+
+// * * * * * * * * * * * * * * * * Constructors  * * * * * * * * * * * * * * //
+
+Foam::elementModel::elementModel
+(
+    const triMesh& mesh,
+    PtrList<spemMaterial>&& materials
+)
+:
+    materials_(std::move(materials)),
+    nNodes_(mesh.nPoints()),
+    X_(mesh.points()),
+    x_{mesh.points(), mesh.points()},
+    v_{std::vector<scalar>(2*nNodes_, 0), std::vector<scalar>(2*nNodes_, 0)},
+    cur_(0),
+    nodeConstraint_(nNodes_, constraint::free),
+    nodeNormal_(2*nNodes_, 0),
+    gravity_{0, 0},
+    massDamping_(0),
+    solidTimeScale_(0),
+    stableDeltaT_(0)
+{
+    build(mesh);
+}
+
+
+// * * * * * * * * * * * * * * * Member Functions  * * * * * * * * * * * * * //
+
+void Foam::elementModel::setConstraints
+(
+    std::vector<constraint> c,
+    std::vector<scalar> normals
+)
+{
+    if (label(c.size()) != nNodes_ || label(normals.size()) != 2*nNodes_)
+    {
+        FatalErrorInFunction << "Constraint arrays have the wrong size"
+            << exit(FatalError);
+    }
+    nodeConstraint_ = std::move(c);
+    nodeNormal_ = std::move(normals);
+}
+
+
+void Foam::elementModel::setGravity(const scalar gx, const scalar gy)
+{
+    gravity_[0] = gx;
+    gravity_[1] = gy;
+}
+
+
+void Foam::elementModel::setState
+(
+    const std::vector<scalar>& x,
+    const std::vector<scalar>& v
+)
+{
+    if (label(x.size()) != 2*nNodes_ || label(v.size()) != 2*nNodes_)
+    {
+        FatalErrorInFunction << "State arrays have " << label(x.size()/2)
+            << " and " << label(v.size()/2) << " nodes, the mesh "
+            << nNodes_ << exit(FatalError);
+    }
+    x_[cur_] = x;
+    v_[cur_] = v;
+    x_[1 - cur_] = x;
+    v_[1 - cur_] = v;
+}
+
+
+void Foam::elementModel::setVelocity(const std::vector<scalar>& v)
+{
+    setState(x_[cur_], v);
+}
+
+
+bool Foam::elementModel::evaluate()
+{
+    failure_.clear();
+    if (!elementPass()) return false;
+    if (!domainPass()) return false;
+    forcePass();
+    return true;
+}
+
+
+bool Foam::elementModel::advance(const scalar dt)
+{
+    const scalar* x = x_[cur_].data();
+    const scalar* v = v_[cur_].data();
+    scalar* xNew = x_[1 - cur_].data();
+    scalar* vNew = v_[1 - cur_].data();
+    const scalar* force = elemForce_.data();
+    const scalar gx = gravity_[0], gy = gravity_[1];
+    // Semi-implicit mass-proportional damping: stable for any alpha dt
+    const scalar damp = 0.5*massDamping_*dt;
+    const scalar keep = (1 - damp)/(1 + damp), gain = dt/(1 + damp);
+    bool finite = true;
+
+    // Performance critical: every node, every step
+    #pragma omp parallel for schedule(static) reduction(&&: finite)
+    for (label n = 0; n < nNodes_; ++n)
+    {
+        scalar f[2] = {0, 0};
+        for (label j = nodeElemStart_[n]; j < nodeElemStart_[n + 1]; ++j)
+        {
+            const label h = nodeElems_[j];
+            f[0] += force[2*h];
+            f[1] += force[2*h + 1];
+        }
+        const scalar invM = 1/nodeMass_[n];
+        scalar vn[2] =
+        {
+            keep*v[2*n] + gain*(f[0]*invM + gx),
+            keep*v[2*n + 1] + gain*(f[1]*invM + gy)
+        };
+        switch (nodeConstraint_[n])
+        {
+            case constraint::free:
+                break;
+            case constraint::slip:
+            {
+                const scalar* nn = &nodeNormal_[2*n];
+                const scalar vnn = vn[0]*nn[0] + vn[1]*nn[1];
+                vn[0] -= vnn*nn[0];
+                vn[1] -= vnn*nn[1];
+                break;
+            }
+            case constraint::fixed:
+                vn[0] = vn[1] = 0;
+                break;
+        }
+        vNew[2*n] = vn[0];
+        vNew[2*n + 1] = vn[1];
+        xNew[2*n] = x[2*n] + dt*vn[0];
+        xNew[2*n + 1] = x[2*n + 1] + dt*vn[1];
+        finite = finite && std::isfinite(vn[0]) && std::isfinite(vn[1]);
+    }
+    cur_ = 1 - cur_;
+    if (!finite)
+    {
+        failure_ = "a node velocity is not finite";
+        return false;
+    }
+    return true;
+}
+
+
+Foam::label Foam::elementModel::elementRegion(const label e) const
+{
+    for (label r = 0; r < regions_.size(); ++r)
+    {
+        if (e < regions_[r].elemEnd) return r;
+    }
+    return -1;
+}
+
+
+std::vector<Foam::scalar> Foam::elementModel::nodalForces() const
+{
+    std::vector<scalar> f(2*nNodes_, 0);
+    for (label h = 0; h < label(elemNodes_.size()); ++h)
+    {
+        f[2*elemNodes_[h]] += elemForce_[2*h];
+        f[2*elemNodes_[h] + 1] += elemForce_[2*h + 1];
+    }
+    return f;
+}
+
+
+void Foam::elementModel::domainCauchyStress
+(
+    const label begin,
+    const label end,
+    scalar* sigma6,
+    scalar* pressure
+) const
+{
+    for (label r = 0; r < regions_.size(); ++r)
+    {
+        const label b = std::max(begin, regions_[r].domainBegin);
+        const label e = std::min(end, regions_[r].domainEnd);
+        if (b >= e) continue;
+        materials_[r].cauchyStress
+        (
+            b, e, domainGrad_.data(), domainArea_.data(), domainMass_.data(),
+            sigma6 + 6*(b - begin), pressure + (b - begin)
+        );
+    }
+}
+
+
+Foam::elementModel::elementFields Foam::elementModel::fields() const
+{
+    const label nDom = nDomains(), nEl = nElements();
+    std::vector<scalar> sigma(6*nDom), p(nDom), rho(nDom);
+    domainCauchyStress(0, nDom, sigma.data(), p.data());
+    for (label r = 0; r < regions_.size(); ++r)
+    {
+        const label b = regions_[r].domainBegin, e = regions_[r].domainEnd;
+        materials_[r].density
+        (
+            b, e, domainGrad_.data(), domainArea_.data(), domainMass_.data(),
+            rho.data() + b
+        );
+    }
+
+    elementFields out;
+    out.stress.assign(6*nEl, 0);
+    out.pressure.assign(nEl, 0);
+    out.density.assign(nEl, 0);
+    out.vonMises.assign(nEl, 0);
+    for (label el = 0; el < nEl; ++el)
+    {
+        for (label i = 0; i < 3; ++i)
+        {
+            const label k = elemDomains_[3*el + i];
+            for (label c = 0; c < 6; ++c) out.stress[6*el + c] += sigma[6*k + c]/3;
+            out.pressure[el] += p[k]/3;
+            out.density[el] += rho[k]/3;
+        }
+        const scalar* s = &out.stress[6*el];
+        out.vonMises[el] = std::sqrt
+        (
+            0.5*
+            (
+                (s[0] - s[1])*(s[0] - s[1]) + (s[1] - s[2])*(s[1] - s[2])
+              + (s[2] - s[0])*(s[2] - s[0])
+            )
+          + 3*(s[3]*s[3] + s[4]*s[4] + s[5]*s[5])
+        );
+    }
+    return out;
+}
+
+
+Foam::label Foam::elementModel::locate
+(
+    const scalar px,
+    const scalar py,
+    const bool reference,
+    scalar bary[3]
+) const
+{
+    const std::vector<scalar>& x = reference ? X_ : x_[cur_];
+    const scalar tol = 1e-10;
+    for (label el = 0; el < nElements(); ++el)
+    {
+        const label* n = &elemNodes_[3*el];
+        const scalar* a = &x[2*n[0]];
+        const scalar* b = &x[2*n[1]];
+        const scalar* c = &x[2*n[2]];
+        const scalar det = (b[0] - a[0])*(c[1] - a[1]) - (c[0] - a[0])*(b[1] - a[1]);
+        const scalar l1 = ((px - a[0])*(c[1] - a[1]) - (c[0] - a[0])*(py - a[1]))/det;
+        const scalar l2 = ((b[0] - a[0])*(py - a[1]) - (px - a[0])*(b[1] - a[1]))/det;
+        const scalar l0 = 1 - l1 - l2;
+        if (l0 >= -tol && l1 >= -tol && l2 >= -tol)
+        {
+            bary[0] = l0;
+            bary[1] = l1;
+            bary[2] = l2;
+            return el;
+        }
+    }
+    return -1;
+}
+
+
+Foam::scalar Foam::elementModel::kineticEnergy() const
+{
+    const std::vector<scalar>& v = v_[cur_];
+    scalar E = 0;
+    for (label n = 0; n < nNodes_; ++n)
+    {
+        E += 0.5*nodeMass_[n]*(v[2*n]*v[2*n] + v[2*n + 1]*v[2*n + 1]);
+    }
+    return E;
+}
+
+
+Foam::scalar Foam::elementModel::strainEnergy() const
+{
+    scalar E = 0;
+    std::vector<scalar> w;
+    for (label r = 0; r < regions_.size(); ++r)
+    {
+        const label b = regions_[r].domainBegin, e = regions_[r].domainEnd;
+        w.resize(e - b);
+        materials_[r].strainEnergyDensity(b, e, domainGrad_.data(), w.data());
+        for (label k = b; k < e; ++k) E += w[k - b]*domainArea_[k];
+    }
+    return E;
+}
+
+
+// ************************************************************************* //
