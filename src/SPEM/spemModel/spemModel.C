@@ -1,6 +1,7 @@
 #include "spemModel.H"
 #include "Time.H"
 #include "vectorIOField.H"
+#include "uniformDimensionedFields.H"
 #include "OSspecific.H"
 #include "vtkSeriesWriter.H"
 
@@ -154,26 +155,29 @@ void Foam::spemModel::readBoundaries()
 
 void Foam::spemModel::readGravity()
 {
-    IOdictionary gDict
+    IOobject gIO
     (
-        IOobject
-        (
-            "g",
-            runTime_.constant(),
-            runTime_,
-            IOobject::READ_IF_PRESENT,
-            IOobject::NO_WRITE,
-            false
-        )
+        "g",
+        runTime_.constant(),
+        runTime_,
+        IOobject::MUST_READ,
+        IOobject::NO_WRITE,
+        false
     );
-    const vector g = gDict.getOrDefault<vector>("value", vector::zero);
-    if (mag(g.z()) > SMALL*mag(g))
+    if (!gIO.typeHeaderOk<uniformDimensionedVectorField>(true))
     {
-        FatalIOErrorInFunction(gDict)
-            << "Gravity must lie in the x-y plane of the 2D mesh, found "
-            << g << exit(FatalIOError);
+        Info<< "No constant/g: no gravity" << nl;
+        return;
     }
-    elements_->setGravity(g.x(), g.y());
+    const uniformDimensionedVectorField g(gIO);
+    if (mag(g.value().z()) > SMALL*mag(g.value()))
+    {
+        FatalErrorInFunction
+            << "Gravity in " << gIO.objectPath() << " must lie in the x-y"
+            << " plane of the 2D mesh, found " << g.value()
+            << exit(FatalError);
+    }
+    elements_->setGravity(g.value().x(), g.value().y());
 }
 
 

@@ -1,0 +1,54 @@
+#include "spemFunctionObject.H"
+#include "Time.H"
+
+Foam::functionObjects::spemFunctionObject::spemFunctionObject
+(
+    const word& name,
+    const Time& runTime,
+    const dictionary& dict
+)
+:
+    timeFunctionObject(name, runTime),
+    writeFile(runTime, name, name, dict)
+{}
+
+
+const Foam::spemModel&
+Foam::functionObjects::spemFunctionObject::model() const
+{
+    if (!time_.foundObject<spemModel>("spemProperties"))
+    {
+        FatalErrorInFunction
+            << "Function object " << name() << " of type " << type()
+            << " needs the SPEM model: run it from spemFoam"
+            << exit(FatalError);
+    }
+    return time_.lookupObject<spemModel>("spemProperties");
+}
+
+
+void Foam::functionObjects::spemFunctionObject::writeColumns
+(
+    const wordList& columns
+)
+{
+    if (!writeToFile()) return;
+    OFstream& os = file();
+    os  << "# Time";
+    for (const word& c : columns) os << tab << c;
+    os  << endl;
+}
+
+
+void Foam::functionObjects::spemFunctionObject::readPoint
+(
+    const dictionary& dict,
+    const word& key,
+    scalar& x,
+    scalar& y
+)
+{
+    const vector p = dict.get<vector>(key);
+    x = p.x();
+    y = p.y();
+}
