@@ -307,6 +307,33 @@ TEST_F(MeshConvert, crossSplitAddsCentroidNodeAndFourTrianglesPerCell)
 }
 
 
+TEST_F(MeshConvert, regionSplitOverridesSplitForOneZone)
+{
+    // The plate (2 rows of cells) split in four, the water in two
+    convert("twoZone", "alternating; regionSplit { plate cross; }");
+    if (HasFatalFailure()) return;
+    const Foam::triMesh mesh(readMesh());
+
+    const int nPlateCells = 2*nCellsX;
+    const int nWaterCells = nTwoZoneCells - nPlateCells;
+    EXPECT_EQ(mesh.nTriangles(), 4*nPlateCells + 2*nWaterCells);
+    EXPECT_EQ(mesh.nPoints(), nTwoZonePoints + nPlateCells);
+
+    const Foam::label plate = mesh.findRegion("plate");
+    const Foam::label water = mesh.findRegion("water");
+    int nPlate = 0, nWater = 0;
+    for (Foam::label t = 0; t < mesh.nTriangles(); ++t)
+    {
+        if (mesh.triangleRegion()[t] == plate) ++nPlate;
+        if (mesh.triangleRegion()[t] == water) ++nWater;
+    }
+    EXPECT_EQ(nPlate, 4*nPlateCells);
+    EXPECT_EQ(nWater, 2*nWaterCells);
+    EXPECT_NEAR(mesh.regionArea(plate), plateArea, areaTolerance*plateArea);
+    EXPECT_NEAR(mesh.regionArea(water), waterArea, areaTolerance*waterArea);
+}
+
+
 TEST_F(MeshConvert, areasSumToDomainArea)
 {
     for (const std::string split : {"alternating", "cross", "right", "left"})

@@ -39,6 +39,14 @@ Usage
         //   left         two triangles, every cell uses the "\" diagonal
         split   alternating;    // default: alternating
 
+        // Optional: a different split for some regions (cellZones), e.g.
+        // cross for thin elastic structures, whose bending locks with two
+        // triangles per cell but not with four
+        regionSplit
+        {
+            plate   cross;
+        }
+
     The "/" diagonal of a quad is the one joining the two corners whose
     offset (dx, dy) has dx*dy > 0 (more precisely the diagonal with the
     larger dx*dy/|d|^2), "\" the other one. A diagonal that would make a
@@ -199,22 +207,33 @@ int main(int argc, char *argv[])
 
     // Read as a word first so that a bad value reports the keyword as well
     // as the file (Enum's own message names neither the keyword)
-    const word splitName =
-        convertDict.getOrDefault<word>
-        (
-            "split",
-            splitTypeNames[splitType::alternating]
-        );
-    if (!splitTypeNames.found(splitName))
+    auto readSplit = [](const dictionary& dict, const word& key)
     {
-        FatalIOErrorInFunction(convertDict)
-            << "Unknown value '" << splitName << "' of keyword 'split' in "
-            << convertDict.objectPath() << nl
-            << "Valid values of 'split': " << splitTypeNames.sortedToc()
-            << exit(FatalIOError);
+        const word splitName =
+            dict.getOrDefault<word>(key, splitTypeNames[splitType::alternating]);
+        if (!splitTypeNames.found(splitName))
+        {
+            FatalIOErrorInFunction(dict)
+                << "Unknown value '" << splitName << "' of keyword '" << key
+                << "' in " << dict.name() << nl
+                << "Valid values of '" << key << "': "
+                << splitTypeNames.sortedToc() << exit(FatalIOError);
+        }
+        return splitTypeNames[splitName];
+    };
+    const splitType split = readSplit(convertDict, "split");
+    Info<< "Splitting quads: split " << splitTypeNames[split] << nl;
+    const dictionary* regionSplitDict = convertDict.findDict("regionSplit");
+    if (regionSplitDict)
+    {
+        for (const entry& e : *regionSplitDict)
+        {
+            Info<< "    region " << e.keyword() << ": split "
+                << splitTypeNames[readSplit(*regionSplitDict, e.keyword())]
+                << nl;
+        }
     }
-    const splitType split = splitTypeNames[splitName];
-    Info<< "Splitting quads: split " << splitName << nl << endl;
+    Info<< endl;
 
 
     // Mesh
@@ -455,6 +474,41 @@ int main(int argc, char *argv[])
     }
 
 
+    // Split of each cell: the default, or its region's regionSplit entry
+    List<splitType> cellSplit(mesh.nCells(), split);
+    if (regionSplitDict)
+    {
+        for (const entry& e : *regionSplitDict)
+        {
+            const label r = regionNames.find(e.keyword());
+            if (r < 0)
+            {
+                FatalIOErrorInFunction(*regionSplitDict)
+                    << "regionSplit names " << e.keyword() << ", which is not"
+                    << " a cellZone. cellZones: " << regionNames
+                    << exit(FatalIOError);
+            }
+            const splitType zoneSplit = readSplit(*regionSplitDict, e.keyword());
+            forAll(cellSplit, celli)
+            {
+                if (cellRegion[celli] == r) cellSplit[celli] = zoneSplit;
+            }
+        }
+    }
+    // Centre node of each cross-split cell, numbered after the front nodes
+    labelList centreNodeOfCell(mesh.nCells(), -1);
+    label nCentreNodes = 0;
+    bool anyAlternating = false;
+    forAll(cellSplit, celli)
+    {
+        if (cellSplit[celli] == splitType::cross)
+        {
+            centreNodeOfCell[celli] = nCentreNodes++;
+        }
+        anyAlternating = anyAlternating || cellSplit[celli] == splitType::alternating;
+    }
+
+
     // Nodes: front-plane points, compact labels in polyMesh point order
 
     labelList nodeOfPoint(mesh.nPoints(), -1);
@@ -471,8 +525,7 @@ int main(int argc, char *argv[])
         if (n == 0) n = nFrontNodes++;
     }
 
-    const label nNodes =
-        nFrontNodes + (split == splitType::cross ? mesh.nCells() : 0);
+    const label nNodes = nFrontNodes + nCentreNodes;
     std::vector<scalar> nodes(2*nNodes);
     forAll(nodeOfPoint, pointi)
     {
@@ -488,16 +541,20 @@ int main(int argc, char *argv[])
     // Triangles
 
     label nColourConflicts = 0;
-    const labelList colour =
-        (split == splitType::alternating)
+    labelList colour =
+        anyAlternating
       ? twoColourCells(mesh, nColourConflicts)
-      : labelList(mesh.nCells(), split == splitType::left ? 1 : 0);
+      : labelList(mesh.nCells(), 0);
+    forAll(cellSplit, celli)
+    {
+        if (cellSplit[celli] == splitType::right) colour[celli] = 0;
+        if (cellSplit[celli] == splitType::left) colour[celli] = 1;
+    }
 
-    const label trianglesPerCell = (split == splitType::cross) ? 4 : 2;
     std::vector<label> triangles;
     std::vector<label> triangleRegion;
-    triangles.reserve(3*trianglesPerCell*mesh.nCells());
-    triangleRegion.reserve(trianglesPerCell*mesh.nCells());
+    triangles.reserve(3*(2*mesh.nCells() + 2*nCentreNodes));
+    triangleRegion.reserve(2*mesh.nCells() + 2*nCentreNodes);
     label nDiagonalsSwapped = 0;
 
     forAll(frontFace, celli)
@@ -514,7 +571,7 @@ int main(int argc, char *argv[])
             meshPoints[f[2]], meshPoints[f[3]]
         };
 
-        if (split == splitType::cross)
+        if (cellSplit[celli] == splitType::cross)
         {
             // Area centroid of the quad from its two triangles (0 1 2), (0 2 3)
             const scalar a012 = twiceArea(q[0], q[1], q[2]);
@@ -522,7 +579,7 @@ int main(int argc, char *argv[])
             const vector centroid =
                 (a012*(q[0] + q[1] + q[2]) + a023*(q[0] + q[2] + q[3]))
                /(3*(a012 + a023));
-            const label centreNode = nFrontNodes + celli;
+            const label centreNode = nFrontNodes + centreNodeOfCell[celli];
             nodes[2*centreNode] = centroid.x();
             nodes[2*centreNode + 1] = centroid.y();
             for (label i = 0; i < 4; ++i)
@@ -644,7 +701,7 @@ int main(int argc, char *argv[])
         << "    triangles: " << spemMesh.nTriangles() << nl
         << "    edges:     " << spemMesh.nEdges() << nl
         << "    segments:  " << spemMesh.nSegments() << nl;
-    if (split == splitType::alternating && nColourConflicts)
+    if (anyAlternating && nColourConflicts)
     {
         Info<< "    note: " << nColourConflicts << " pairs of neighbouring"
             << " cells share a diagonal direction (odd cycles in the cell"

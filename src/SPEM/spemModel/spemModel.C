@@ -13,15 +13,6 @@ namespace Foam
     defineTypeNameAndDebug(spemModel, 0);
 }
 
-const Foam::Enum<Foam::spemModel::patchType>
-Foam::spemModel::patchTypeNames
-({
-    { patchType::clamped, "clamped" },
-    { patchType::slipWall, "slipWall" },
-    { patchType::noSlipWall, "noSlipWall" },
-    { patchType::freeSurface, "freeSurface" },
-});
-
 const Foam::Enum<Foam::spemModel::methodType>
 Foam::spemModel::methodTypeNames
 ({
@@ -94,61 +85,14 @@ void Foam::spemModel::readBoundaries()
         patchTypes_[p] = patchTypeNames.get("type", bcDict.subDict(name));
     }
 
-    // Node constraints: fixed wins over slip; a node on slip segments
-    // whose normals differ (a corner) is fixed
-    const label nNodes = mesh_.nPoints();
-    const std::vector<scalar>& X = mesh_.points();
-    std::vector<elementModel::constraint> c(nNodes, elementModel::constraint::free);
-    std::vector<scalar> normal(2*nNodes, 0);
-    std::vector<scalar> minCos(nNodes, 1);
-
-    for (label s = 0; s < mesh_.nSegments(); ++s)
-    {
-        const patchType t = patchTypes_[mesh_.segmentPatch()[s]];
-        const label a = mesh_.segments()[2*s], b = mesh_.segments()[2*s + 1];
-        if (t == patchType::clamped || t == patchType::noSlipWall)
-        {
-            c[a] = c[b] = elementModel::constraint::fixed;
-        }
-        else if (t == patchType::slipWall)
-        {
-            // Outward normal: the element lies left of a -> b
-            const scalar dx = X[2*b] - X[2*a], dy = X[2*b + 1] - X[2*a + 1];
-            const scalar len = std::sqrt(dx*dx + dy*dy);
-            const scalar n[2] = {dy/len, -dx/len};
-            for (const label v : {a, b})
-            {
-                const scalar sum2 = normal[2*v]*normal[2*v] + normal[2*v + 1]*normal[2*v + 1];
-                if (sum2 > 0)
-                {
-                    const scalar cosAngle =
-                        (normal[2*v]*n[0] + normal[2*v + 1]*n[1])/std::sqrt(sum2);
-                    minCos[v] = std::min(minCos[v], cosAngle);
-                }
-                normal[2*v] += n[0];
-                normal[2*v + 1] += n[1];
-            }
-        }
-    }
-
     // Two slip walls meeting at more than this angle make a corner
-    const scalar cornerCos =
-        std::cos(getOrDefault<scalar>("slipCornerAngle", 10)*M_PI/180);
-    for (label v = 0; v < nNodes; ++v)
-    {
-        const scalar len = std::hypot(normal[2*v], normal[2*v + 1]);
-        if (c[v] == elementModel::constraint::fixed || len == 0) continue;
-        if (minCos[v] < cornerCos)
-        {
-            c[v] = elementModel::constraint::fixed;
-        }
-        else
-        {
-            c[v] = elementModel::constraint::slip;
-            normal[2*v] /= len;
-            normal[2*v + 1] /= len;
-        }
-    }
+    std::vector<elementModel::constraint> c;
+    std::vector<scalar> normal;
+    nodeConstraints
+    (
+        mesh_, patchTypes_, getOrDefault<scalar>("slipCornerAngle", 10),
+        c, normal
+    );
     elements_->setConstraints(std::move(c), std::move(normal));
 }
 
@@ -240,19 +184,6 @@ void Foam::spemModel::writeState() const
 
 void Foam::spemModel::writeVTK()
 {
-    if (!vtk_)
-    {
-        vtk_.reset
-        (
-            new vtkOutput::seriesWriter
-            (
-                runTime_.path()/"VTK",
-                runTime_.caseName().name(),
-                runTime_.value()
-            )
-        );
-    }
-
     const elementModel& em = *elements_;
     const label nNodes = em.nNodes(), nEl = em.nElements();
     const std::vector<scalar>& x = em.positions();
@@ -292,6 +223,20 @@ void Foam::spemModel::writeVTK()
 
     try
     {
+        // Created at the first write: on restart it drops the entries of the
+        // existing series from the start time on
+        if (!vtk_)
+        {
+            vtk_.reset
+            (
+                new vtkOutput::seriesWriter
+                (
+                    runTime_.path()/"VTK",
+                    runTime_.caseName().name(),
+                    runTime_.value()
+                )
+            );
+        }
         vtk_->write(runTime_.value(), {elements}, {});
     }
     catch (const std::exception& err)

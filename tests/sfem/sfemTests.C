@@ -1,0 +1,341 @@
+/*---------------------------------------------------------------------------*\
+Description
+    Unit tests of the element half (ES-FEM, paper sect. 2.1): the patch
+    test on an irregular mesh, lumped masses, and the stress of each
+    constitutive model for a known deformation.
+
+\*---------------------------------------------------------------------------*/
+
+#include "testMeshes.H"
+#include "testModels.H"
+#include "elasticSolid.H"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+using namespace Foam;
+
+namespace
+{
+
+const std::string plateSolid = "model linearElastic; rho 2700; E 67.5e9; nu 0.34;";
+
+//- An irregular single-region mesh: 8 x 6 cells on [0,1] x [0,0.75] with
+//  interior nodes moved by up to 30 % of the spacing
+triMesh irregularMesh(const std::string& region)
+{
+    return testMeshes::perturbed
+    (
+        testMeshes::build({{0, 1, 0, 0.75, 8, 6, region}}), 0.3, 0.125
+    );
+}
+
+//- A linear field w = G x + b at every node (2 per node)
+std::vector<scalar> linearField
+(
+    const std::vector<scalar>& x, const scalar G[4], const scalar b[2]
+)
+{
+    std::vector<scalar> w(x.size());
+    for (size_t n = 0; n < x.size()/2; ++n)
+    {
+        w[2*n] = G[0]*x[2*n] + G[1]*x[2*n + 1] + b[0];
+        w[2*n + 1] = G[2]*x[2*n] + G[3]*x[2*n + 1] + b[1];
+    }
+    return w;
+}
+
+//- Nodes on no boundary segment
+std::vector<bool> interiorNodes(const triMesh& mesh)
+{
+    std::vector<bool> interior(mesh.nPoints(), true);
+    for (label v : mesh.segments()) interior[v] = false;
+    return interior;
+}
+
+} // End anonymous namespace
+
+
+TEST(ESFEM, patchTestReproducesLinearVelocityFieldInFluid)
+{
+    const triMesh mesh = irregularMesh("water");
+    auto em = testModels::model(mesh, {{"water", testModels::water}});
+
+    // A uniformly compressed configuration (uniform pressure) moving with a
+    // linear velocity field (uniform viscous stress), gradients taken on
+    // the current configuration
+    const scalar F[4] = {-2e-3, 5e-4, 0, -1e-3};   // x = X + F X
+    const scalar zero[2] = {0, 0};
+    std::vector<scalar> x = linearField(mesh.points(), F, zero);
+    for (size_t i = 0; i < x.size(); ++i) x[i] += mesh.points()[i];
+    const scalar G[4] = {0.3, -1.7, 2.2, -0.3};
+    const scalar b[2] = {0.5, -4.0};
+    em->setState(x, linearField(x, G, b));
+    ASSERT_TRUE(em->evaluate());
+
+    const std::vector<scalar>& g = em->domainGradient();
+    for (label k = 0; k < em->nDomains(); ++k)
+    {
+        for (label i = 0; i < 4; ++i)
+        {
+            ASSERT_NEAR(g[4*k + i], G[i], 1e-12) << "domain " << k;
+        }
+    }
+
+    // Uniform pressure rho0 c^2 (1/J - 1) in every domain (eq. 7)
+    const scalar J = (1 + F[0])*(1 + F[3]) - F[1]*F[2];
+    const scalar p = 100*100*1000*(1/J - 1);
+    std::vector<scalar> sigma(6*em->nDomains()), pk(em->nDomains());
+    em->domainCauchyStress(0, em->nDomains(), sigma.data(), pk.data());
+    for (label k = 0; k < em->nDomains(); ++k)
+    {
+        ASSERT_NEAR(pk[k], p, 1e-9*p) << "domain " << k;
+    }
+
+    // A uniform stress is in equilibrium at every interior node
+    const std::vector<scalar> f = em->nodalForces();
+    const std::vector<bool> interior = interiorNodes(mesh);
+    const scalar scale = p*0.125;   // |sigma| times the spacing
+    int nInterior = 0;
+    scalar boundaryMax = 0;
+    for (label n = 0; n < mesh.nPoints(); ++n)
+    {
+        if (!interior[n])
+        {
+            boundaryMax = std::max(boundaryMax, std::hypot(f[2*n], f[2*n + 1]));
+            continue;
+        }
+        ++nInterior;
+        EXPECT_NEAR(f[2*n], 0, 1e-10*scale) << "node " << n;
+        EXPECT_NEAR(f[2*n + 1], 0, 1e-10*scale) << "node " << n;
+    }
+    EXPECT_GT(nInterior, 20);
+    EXPECT_GT(boundaryMax, 0.1*scale);
+}
+
+
+TEST(ESFEM, patchTestReproducesLinearDisplacementFieldInSolid)
+{
+    const triMesh mesh = irregularMesh("plate");
+    auto em = testModels::model(mesh, {{"plate", plateSolid}});
+
+    const scalar H[4] = {1e-3, 2e-4, -5e-4, -3e-4};   // displacement gradient
+    const scalar c[2] = {1e-3, 2e-3};
+    std::vector<scalar> u = linearField(mesh.points(), H, c);
+    std::vector<scalar> x(mesh.points());
+    for (size_t i = 0; i < x.size(); ++i) x[i] += u[i];
+    em->setState(x, std::vector<scalar>(x.size(), 0));
+    ASSERT_TRUE(em->evaluate());
+
+    const std::vector<scalar>& g = em->domainGradient();
+    for (label k = 0; k < em->nDomains(); ++k)
+    {
+        for (label i = 0; i < 4; ++i)
+        {
+            ASSERT_NEAR(g[4*k + i], H[i], 1e-12) << "domain " << k;
+        }
+    }
+
+    // Uniform stress: zero force at interior nodes, nonzero on the boundary
+    const std::vector<scalar> f = em->nodalForces();
+    const std::vector<bool> interior = interiorNodes(mesh);
+    const scalar scale = 67.5e9*1e-3*0.125;
+    scalar boundaryMax = 0;
+    for (label n = 0; n < mesh.nPoints(); ++n)
+    {
+        if (interior[n])
+        {
+            EXPECT_NEAR(f[2*n], 0, 1e-11*scale) << "node " << n;
+            EXPECT_NEAR(f[2*n + 1], 0, 1e-11*scale) << "node " << n;
+        }
+        else
+        {
+            boundaryMax = std::max(boundaryMax, std::hypot(f[2*n], f[2*n + 1]));
+        }
+    }
+    EXPECT_GT(boundaryMax, 1e-3*scale);
+}
+
+
+TEST(ESFEM, nodalMassesSumToRegionMasses)
+{
+    // Water on a plate: a conforming two-region mesh
+    const triMesh mesh = testMeshes::build
+    ({
+        {0, 1, -0.1, 0, 10, 2, "plate"},
+        {0, 1, 0, 0.6, 10, 12, "water"}
+    });
+    auto em = testModels::model
+    (
+        mesh, {{"water", testModels::water}, {"plate", plateSolid}}
+    );
+
+    const scalar waterMass = 1000*0.6, plateMass = 2700*0.1;
+    scalar nodeSum = 0;
+    for (scalar m : em->nodeMass())
+    {
+        ASSERT_GT(m, 0);
+        nodeSum += m;
+    }
+    EXPECT_NEAR(nodeSum, waterMass + plateMass, 1e-12*(waterMass + plateMass));
+
+    // The domain masses of each region sum to the region mass
+    for (const elementModel::region& r : em->regions())
+    {
+        scalar sum = 0;
+        for (label k = r.domainBegin; k < r.domainEnd; ++k)
+        {
+            sum += em->domainMass()[k];
+        }
+        const scalar expected = r.name == "water" ? waterMass : plateMass;
+        EXPECT_NEAR(sum, expected, 1e-12*expected) << r.name;
+    }
+
+    // Interface edges give one domain per side: 10 extra domains
+    EXPECT_EQ(em->nDomains(), mesh.nEdges() + 10);
+}
+
+
+// * * * * * * * * * * * * * * * Materials  * * * * * * * * * * * * * * * * //
+
+namespace
+{
+
+struct stressResult
+{
+    scalar P[4];        // force stress (Cauchy or first Piola-Kirchhoff)
+    scalar sigma[6];    // Cauchy xx yy zz xy yz xz
+    scalar p;
+    bool ok;
+};
+
+stressResult stressOf
+(
+    const spemMaterial& m, const scalar g[4], scalar area = 1, scalar mass = 0
+)
+{
+    stressResult r;
+    r.ok = m.stress(0, 1, g, &area, &mass, r.P);
+    m.cauchyStress(0, 1, g, &area, &mass, r.sigma, &r.p);
+    return r;
+}
+
+const std::string solidDict(const std::string& model)
+{
+    return "model " + model + "; rho 1000; E 2e6; nu 0.3;";
+}
+
+} // End anonymous namespace
+
+
+TEST(Materials, linearElasticGivesPlaneStrainStressOfUniaxialStrain)
+{
+    auto m = testModels::material("s", solidDict("linearElastic"));
+    const scalar E = 2e6, nu = 0.3;
+    const scalar lambda = E*nu/((1 + nu)*(1 - 2*nu)), mu = E/(2*(1 + nu));
+    const scalar eps = 1e-3;
+    const scalar g[4] = {eps, 0, 0, 0};
+    const stressResult r = stressOf(m(), g);
+    EXPECT_NEAR(r.P[0], (lambda + 2*mu)*eps, 1e-9*E);
+    EXPECT_NEAR(r.P[3], lambda*eps, 1e-9*E);
+    EXPECT_NEAR(r.sigma[2], lambda*eps, 1e-9*E);   // plane strain sigma_zz
+    EXPECT_NEAR(r.P[1], 0, 1e-9*E);
+
+    // Pure shear strain gamma: tau = mu gamma
+    const scalar gs[4] = {0, 2e-3, 0, 0};
+    EXPECT_NEAR(stressOf(m(), gs).P[1], mu*2e-3, 1e-9*E);
+
+    const scalar c = std::sqrt((lambda + 2*mu)/1000);
+    EXPECT_NEAR(m->waveSpeed(), c, 1e-12*c);
+}
+
+
+TEST(Materials, hyperelasticSolidsAreStressFreeUnderRigidRotation)
+{
+    for (const std::string model : {"saintVenantKirchhoff", "neoHookean"})
+    {
+        auto m = testModels::material("s", solidDict(model));
+        const scalar a = 0.9;   // 52 degrees
+        // F = R: displacement gradient R - I
+        const scalar g[4] = {std::cos(a) - 1, -std::sin(a), std::sin(a), std::cos(a) - 1};
+        const stressResult r = stressOf(m(), g);
+        EXPECT_TRUE(r.ok);
+        for (label i = 0; i < 4; ++i) EXPECT_NEAR(r.P[i], 0, 1e-9) << model;
+
+        // linearElastic is not (small-strain theory): a sanity check that
+        // the test would catch a small-strain model
+        if (model == "saintVenantKirchhoff")
+        {
+            auto lin = testModels::material("s", solidDict("linearElastic"));
+            EXPECT_GT(std::abs(stressOf(lin(), g).P[0]), 1e3);
+        }
+    }
+}
+
+
+TEST(Materials, hyperelasticSolidsGiveKnownStressOfUniaxialStretch)
+{
+    const scalar E = 2e6, nu = 0.3;
+    const scalar lambda = E*nu/((1 + nu)*(1 - 2*nu)), mu = E/(2*(1 + nu));
+    const scalar s = 1.1;   // stretch
+    const scalar g[4] = {s - 1, 0, 0, 0};
+
+    // St. Venant-Kirchhoff: E_xx = (s^2 - 1)/2, S = lambda trE I + 2 mu E,
+    // P = F S, sigma = F S F^T / J
+    {
+        auto m = testModels::material("s", solidDict("saintVenantKirchhoff"));
+        const scalar Exx = 0.5*(s*s - 1);
+        const scalar Sxx = (lambda + 2*mu)*Exx, Syy = lambda*Exx;
+        const stressResult r = stressOf(m(), g);
+        EXPECT_NEAR(r.P[0], s*Sxx, 1e-9*E);
+        EXPECT_NEAR(r.P[3], Syy, 1e-9*E);
+        EXPECT_NEAR(r.sigma[0], s*Sxx, 1e-9*E);        // s^2 Sxx / s
+        EXPECT_NEAR(r.sigma[1], Syy/s, 1e-9*E);
+    }
+    // neo-Hookean: P = mu (F - F^-T) + lambda ln J F^-T
+    {
+        auto m = testModels::material("s", solidDict("neoHookean"));
+        const stressResult r = stressOf(m(), g);
+        EXPECT_NEAR(r.P[0], mu*(s - 1/s) + lambda*std::log(s)/s, 1e-9*E);
+        EXPECT_NEAR(r.P[3], lambda*std::log(s), 1e-9*E);
+        EXPECT_NEAR(r.sigma[2], lambda*std::log(s)/s, 1e-9*E);
+    }
+}
+
+
+TEST(Materials, hyperelasticSolidsReportInvertedDomains)
+{
+    const scalar g[4] = {-1.5, 0, 0, 0};   // J = -0.5
+    for (const std::string model : {"saintVenantKirchhoff", "neoHookean"})
+    {
+        auto m = testModels::material("s", solidDict(model));
+        EXPECT_FALSE(stressOf(m(), g).ok) << model;
+    }
+}
+
+
+TEST(Materials, weaklyCompressibleFluidGivesStateEquationPressureAndViscousStress)
+{
+    auto m = testModels::material("w", testModels::water);
+    // A domain of mass 1000 kg/m^3 x 1 m^2 compressed to 0.99 m^2 (eq. 7)
+    const scalar g0[4] = {0, 0, 0, 0};
+    const scalar rho = 1000/0.99;
+    const stressResult r = stressOf(m(), g0, 0.99, 1000);
+    EXPECT_NEAR(r.p, 100*100*(rho - 1000), 1e-9*r.p);
+    EXPECT_NEAR(r.P[0], -r.p, 1e-9*r.p);
+    EXPECT_NEAR(r.P[3], -r.p, 1e-9*r.p);
+
+    // Simple shear dv_x/dy = 10 1/s: tau_xy = mu * 10 (eqs. 9-10)
+    const scalar gs[4] = {0, 10, 0, 0};
+    const stressResult s = stressOf(m(), gs, 1, 1000);
+    EXPECT_NEAR(s.P[1], 1e-3*10, 1e-15);
+    EXPECT_NEAR(s.P[2], 1e-3*10, 1e-15);
+    EXPECT_NEAR(s.p, 0, 1e-9);
+
+    // Expansion div v = 3: deviatoric part only (eq. 9, 3D deviator)
+    const scalar ge[4] = {3, 0, 0, 0};
+    const stressResult e = stressOf(m(), ge, 1, 1000);
+    EXPECT_NEAR(e.P[0], 2e-3*(3 - 1), 1e-15);
+    EXPECT_NEAR(e.P[3], 2e-3*(0 - 1), 1e-15);
+}

@@ -1,0 +1,648 @@
+/*---------------------------------------------------------------------------*\
+Description
+    Unit tests of Foam::vtkOutput::seriesWriter: what is written is read
+    back with VTK's own XML readers (the ones ParaView uses) and compared
+    value by value; the collection file is parsed as XML; restart drops and
+    keeps the right entries. If pvpython is on PATH, ParaView itself opens
+    the series (skipped otherwise).
+
+    No OpenFOAM header here: VTK and OpenFOAM headers clash (Log macro).
+
+\*---------------------------------------------------------------------------*/
+
+#include "vtkSeriesWriter.H"
+
+#include <gtest/gtest.h>
+
+#include <vtkCellArray.h>
+#include <vtkCellData.h>
+#include <vtkCellType.h>
+#include <vtkCompositeDataSet.h>
+#include <vtkDataArray.h>
+#include <vtkFieldData.h>
+#include <vtkIdList.h>
+#include <vtkInformation.h>
+#include <vtkMultiBlockDataSet.h>
+#include <vtkNew.h>
+#include <vtkPointData.h>
+#include <vtkPolyData.h>
+#include <vtkSmartPointer.h>
+#include <vtkUnstructuredGrid.h>
+#include <vtkXMLDataElement.h>
+#include <vtkXMLDataParser.h>
+#include <vtkXMLMultiBlockDataReader.h>
+
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+namespace fs = std::filesystem;
+using namespace Foam::vtkOutput;
+
+namespace
+{
+
+// A small mesh: unit square as two triangles plus one triangle to the right
+//
+//  3 ------ 2
+//  |      / | .
+//  |    /   |   4
+//  |  /     | .
+//  0 ------ 1
+const std::vector<double> meshPoints =
+    {0, 0,  1, 0,  1, 1,  0, 1,  2, 0.5};
+const std::vector<int> meshTriangles =
+    {0, 1, 2,  0, 2, 3,  1, 4, 2};
+const std::size_t nMeshPoints = 5;
+const std::size_t nMeshTriangles = 3;
+
+
+//- Fields of the small mesh at one time, distinct per time and per value
+struct meshFields
+{
+    std::vector<double> pressure;       // cell scalar
+    std::vector<double> displacement;   // point 2D vector
+    std::vector<double> stress;         // cell symmetric tensor
+
+    explicit meshFields(double time)
+    {
+        for (std::size_t t = 0; t < nMeshTriangles; ++t)
+        {
+            pressure.push_back(100*time + t + 0.25);
+            for (int c = 0; c < 6; ++c)
+            {
+                stress.push_back(1000*time + 10*t + c + 0.5);
+            }
+        }
+        for (std::size_t p = 0; p < nMeshPoints; ++p)
+        {
+            displacement.push_back(time + 0.1*p);
+            displacement.push_back(-time - 0.01*p);
+        }
+    }
+
+    triangleBlock block() const
+    {
+        return triangleBlock
+        {
+            "elements",
+            nMeshPoints, meshPoints.data(),
+            nMeshTriangles, meshTriangles.data(),
+            {{"displacement", 2, displacement.data()}},
+            {{"pressure", 1, pressure.data()}, {"stress", 6, stress.data()}}
+        };
+    }
+};
+
+
+//- One block of a multiblock file read back with VTK's reader
+vtkSmartPointer<vtkMultiBlockDataSet> readMultiBlock(const fs::path& vtm)
+{
+    vtkNew<vtkXMLMultiBlockDataReader> reader;
+    reader->SetFileName(vtm.c_str());
+    reader->Update();
+    return vtkMultiBlockDataSet::SafeDownCast(reader->GetOutputDataObject(0));
+}
+
+
+std::string blockName(vtkMultiBlockDataSet* blocks, unsigned i)
+{
+    if (!blocks->HasMetaData(i))
+    {
+        return "<no meta data>";
+    }
+    const char* name = blocks->GetMetaData(i)->Get(vtkCompositeDataSet::NAME());
+    return name ? name : "<no name>";
+}
+
+
+//- (timestep, file) of each <DataSet> of a collection, parsed as XML
+std::vector<std::pair<std::string, std::string>> readCollection
+(
+    const fs::path& pvd
+)
+{
+    vtkNew<vtkXMLDataParser> parser;
+    parser->SetFileName(pvd.c_str());
+    if (!parser->Parse())
+    {
+        ADD_FAILURE() << pvd << " does not parse as XML";
+        return {};
+    }
+    vtkXMLDataElement* root = parser->GetRootElement();
+    EXPECT_STREQ(root->GetName(), "VTKFile");
+    EXPECT_STREQ(root->GetAttribute("type"), "Collection");
+    vtkXMLDataElement* collection =
+        root->FindNestedElementWithName("Collection");
+    if (!collection)
+    {
+        ADD_FAILURE() << pvd << " has no <Collection>";
+        return {};
+    }
+    std::vector<std::pair<std::string, std::string>> entries;
+    for (int i = 0; i < collection->GetNumberOfNestedElements(); ++i)
+    {
+        vtkXMLDataElement* e = collection->GetNestedElement(i);
+        EXPECT_STREQ(e->GetName(), "DataSet");
+        const char* timestep = e->GetAttribute("timestep");
+        const char* file = e->GetAttribute("file");
+        entries.emplace_back(timestep ? timestep : "", file ? file : "");
+    }
+    return entries;
+}
+
+
+using collectionEntries = std::vector<std::pair<std::string, std::string>>;
+
+
+//- A fresh output folder per test below the test's working directory
+class VtkSeries : public ::testing::Test
+{
+protected:
+
+    fs::path dir;
+
+    void SetUp() override
+    {
+        dir = fs::current_path()/"VtkSeries"
+            /::testing::UnitTest::GetInstance()->current_test_info()->name();
+        fs::remove_all(dir);
+    }
+
+    fs::path pvd() const { return dir/"case.pvd"; }
+
+    //- Write the small mesh at the given times with a fresh writer
+    void writeSeries(const std::vector<double>& times, double startTime = 0)
+    {
+        seriesWriter writer(dir.string(), "case", startTime);
+        for (const double t : times)
+        {
+            const meshFields fields(t);
+            writer.write(t, {fields.block()}, {});
+        }
+    }
+};
+
+} // End anonymous namespace
+
+
+// * * * * * * * * * * * * * * * * * Tests * * * * * * * * * * * * * * * * * //
+
+TEST_F(VtkSeries, roundTripsTriangleFields)
+{
+    writeSeries({0, 0.5});
+
+    for (const auto& [index, time] : {std::pair<int, double>{0, 0}, {1, 0.5}})
+    {
+        SCOPED_TRACE("time " + std::to_string(time));
+        const fs::path vtm =
+            dir/("case_00000" + std::to_string(index) + ".vtm");
+        ASSERT_TRUE(fs::exists(vtm)) << vtm;
+
+        auto blocks = readMultiBlock(vtm);
+        ASSERT_TRUE(blocks);
+        ASSERT_EQ(blocks->GetNumberOfBlocks(), 1u);
+        EXPECT_EQ(blockName(blocks, 0), "elements");
+
+        auto* grid = vtkUnstructuredGrid::SafeDownCast(blocks->GetBlock(0));
+        ASSERT_TRUE(grid) << "block 0 is not an unstructured grid";
+
+        // Points, z = 0
+        ASSERT_EQ(grid->GetNumberOfPoints(), vtkIdType(nMeshPoints));
+        for (std::size_t p = 0; p < nMeshPoints; ++p)
+        {
+            double x[3];
+            grid->GetPoint(vtkIdType(p), x);
+            EXPECT_EQ(x[0], meshPoints[2*p]) << "point " << p;
+            EXPECT_EQ(x[1], meshPoints[2*p + 1]) << "point " << p;
+            EXPECT_EQ(x[2], 0.0) << "point " << p;
+        }
+
+        // Triangles, node order kept
+        ASSERT_EQ(grid->GetNumberOfCells(), vtkIdType(nMeshTriangles));
+        vtkNew<vtkIdList> nodes;
+        for (std::size_t t = 0; t < nMeshTriangles; ++t)
+        {
+            EXPECT_EQ(grid->GetCellType(vtkIdType(t)), VTK_TRIANGLE);
+            grid->GetCellPoints(vtkIdType(t), nodes);
+            ASSERT_EQ(nodes->GetNumberOfIds(), 3);
+            for (int i = 0; i < 3; ++i)
+            {
+                EXPECT_EQ(nodes->GetId(i), meshTriangles[3*t + i])
+                    << "triangle " << t << " node " << i;
+            }
+        }
+
+        const meshFields expected(time);
+
+        // Cell scalar
+        vtkDataArray* pressure = grid->GetCellData()->GetArray("pressure");
+        ASSERT_TRUE(pressure);
+        ASSERT_EQ(pressure->GetNumberOfComponents(), 1);
+        ASSERT_EQ(pressure->GetNumberOfTuples(), vtkIdType(nMeshTriangles));
+        for (std::size_t t = 0; t < nMeshTriangles; ++t)
+        {
+            EXPECT_EQ(pressure->GetComponent(t, 0), expected.pressure[t]);
+        }
+
+        // Point 2D vector, read back with three components, z = 0
+        vtkDataArray* displacement =
+            grid->GetPointData()->GetArray("displacement");
+        ASSERT_TRUE(displacement);
+        ASSERT_EQ(displacement->GetNumberOfComponents(), 3);
+        ASSERT_EQ(displacement->GetNumberOfTuples(), vtkIdType(nMeshPoints));
+        for (std::size_t p = 0; p < nMeshPoints; ++p)
+        {
+            EXPECT_EQ
+            (
+                displacement->GetComponent(p, 0), expected.displacement[2*p]
+            );
+            EXPECT_EQ
+            (
+                displacement->GetComponent(p, 1),
+                expected.displacement[2*p + 1]
+            );
+            EXPECT_EQ(displacement->GetComponent(p, 2), 0.0);
+        }
+
+        // Cell symmetric tensor, ParaView's component order and names
+        vtkDataArray* stress = grid->GetCellData()->GetArray("stress");
+        ASSERT_TRUE(stress);
+        ASSERT_EQ(stress->GetNumberOfComponents(), 6);
+        ASSERT_EQ(stress->GetNumberOfTuples(), vtkIdType(nMeshTriangles));
+        for (std::size_t t = 0; t < nMeshTriangles; ++t)
+        {
+            for (int c = 0; c < 6; ++c)
+            {
+                EXPECT_EQ(stress->GetComponent(t, c), expected.stress[6*t + c]);
+            }
+        }
+        const char* names[6] = {"XX", "YY", "ZZ", "XY", "YZ", "XZ"};
+        for (int c = 0; c < 6; ++c)
+        {
+            ASSERT_TRUE(stress->GetComponentName(c)) << "component " << c;
+            EXPECT_STREQ(stress->GetComponentName(c), names[c]);
+        }
+
+        // Time for ParaView when the .vtm is opened alone
+        vtkDataArray* timeValue = grid->GetFieldData()->GetArray("TimeValue");
+        ASSERT_TRUE(timeValue);
+        EXPECT_EQ(timeValue->GetComponent(0, 0), time);
+    }
+}
+
+
+TEST_F(VtkSeries, roundTripsWithEveryCompression)
+{
+    const std::vector<std::pair<seriesWriter::compression, std::string>>
+        methods =
+        {
+            {seriesWriter::compression::zlib, "vtkZLibDataCompressor"},
+            {seriesWriter::compression::lz4, "vtkLZ4DataCompressor"},
+            {seriesWriter::compression::none, ""}
+        };
+
+    for (const auto& [method, compressorName] : methods)
+    {
+        const std::string baseName =
+            "case_" + (compressorName.empty() ? "none" : compressorName);
+        SCOPED_TRACE(baseName);
+        const meshFields fields(0.5);
+        seriesWriter(dir.string(), baseName, 0, method)
+            .write(0.5, {fields.block()}, {});
+
+        // The XML header of the piece names its compressor
+        const std::string stem = baseName + "_000000";
+        std::ifstream piece(dir/stem/(stem + "_0.vtu"));
+        ASSERT_TRUE(piece.good());
+        std::string header;
+        std::getline(piece, header);
+        if (compressorName.empty())
+        {
+            EXPECT_EQ(header.find("compressor="), std::string::npos) << header;
+        }
+        else
+        {
+            EXPECT_NE(header.find("compressor=\"" + compressorName + "\""),
+                      std::string::npos) << header;
+        }
+
+        auto blocks = readMultiBlock(dir/(stem + ".vtm"));
+        ASSERT_TRUE(blocks);
+        ASSERT_EQ(blocks->GetNumberOfBlocks(), 1u);
+        auto* grid = vtkUnstructuredGrid::SafeDownCast(blocks->GetBlock(0));
+        ASSERT_TRUE(grid);
+        vtkDataArray* stress = grid->GetCellData()->GetArray("stress");
+        ASSERT_TRUE(stress);
+        for (std::size_t t = 0; t < nMeshTriangles; ++t)
+        {
+            for (int c = 0; c < 6; ++c)
+            {
+                EXPECT_EQ(stress->GetComponent(t, c), fields.stress[6*t + c]);
+            }
+        }
+    }
+}
+
+
+TEST_F(VtkSeries, collectionListsEveryTimeWrittenAndParsesAsXml)
+{
+    writeSeries({0, 0.5});
+
+    ASSERT_TRUE(fs::exists(pvd()));
+    EXPECT_FALSE(fs::exists(dir/"case.pvd.tmp")) << "temporary left behind";
+    const collectionEntries expected =
+        {{"0", "case_000000.vtm"}, {"0.5", "case_000001.vtm"}};
+    EXPECT_EQ(readCollection(pvd()), expected);
+
+    // Every listed file and its piece folder exist
+    for (const auto& e : expected)
+    {
+        EXPECT_TRUE(fs::exists(dir/e.second)) << e.second;
+        EXPECT_TRUE(fs::is_directory(dir/fs::path(e.second).stem()))
+            << e.second;
+    }
+}
+
+
+TEST_F(VtkSeries, collectionKeepsTimesToFullPrecision)
+{
+    const double awkward = 0.1 + 0.2;       // 0.30000000000000004
+    writeSeries({1e-7, awkward, 12345.678});
+
+    const collectionEntries entries = readCollection(pvd());
+    ASSERT_EQ(entries.size(), 3u);
+    EXPECT_EQ(std::stod(entries[0].first), 1e-7);
+    EXPECT_EQ(std::stod(entries[1].first), awkward);
+    EXPECT_EQ(std::stod(entries[2].first), 12345.678);
+}
+
+
+TEST_F(VtkSeries, restartDropsLaterTimesKeepsEarlierAndAppends)
+{
+    writeSeries({0, 0.5, 1});
+    ASSERT_TRUE(fs::exists(dir/"case_000002.vtm"));
+
+    seriesWriter restarted(dir.string(), "case", 0.25);
+
+    // At once, before any write: only the first entry remains, on disk too
+    EXPECT_EQ(restarted.entries().size(), 1u);
+    EXPECT_EQ(restarted.nextIndex(), 1u);
+    EXPECT_EQ
+    (
+        readCollection(pvd()),
+        (collectionEntries{{"0", "case_000000.vtm"}})
+    );
+    EXPECT_TRUE(fs::exists(dir/"case_000000.vtm"));
+    EXPECT_FALSE(fs::exists(dir/"case_000001.vtm"));
+    EXPECT_FALSE(fs::exists(dir/"case_000001"));
+    EXPECT_FALSE(fs::exists(dir/"case_000002.vtm"));
+    EXPECT_FALSE(fs::exists(dir/"case_000002"));
+
+    const meshFields fields(0.25);
+    restarted.write(0.25, {fields.block()}, {});
+    restarted.write(0.75, {fields.block()}, {});
+
+    const collectionEntries expected =
+    {
+        {"0", "case_000000.vtm"},
+        {"0.25", "case_000001.vtm"},
+        {"0.75", "case_000002.vtm"}
+    };
+    EXPECT_EQ(readCollection(pvd()), expected);
+
+    // The file now under index 1 holds the new time
+    auto blocks = readMultiBlock(dir/"case_000001.vtm");
+    ASSERT_TRUE(blocks);
+    auto* grid = vtkUnstructuredGrid::SafeDownCast(blocks->GetBlock(0));
+    ASSERT_TRUE(grid);
+    EXPECT_EQ(grid->GetCellData()->GetArray("pressure")->GetComponent(0, 0),
+              fields.pressure[0]);
+}
+
+
+TEST_F(VtkSeries, restartAtWrittenTimeDropsItDespiteRoundOff)
+{
+    // A run stepping 0.1 from 0 reaches 0.9999999999999999 after ten steps
+    // and writes it; its restart reads the time directory "1"
+    double time = 0;
+    for (int step = 0; step < 10; ++step)
+    {
+        time += 0.1;
+    }
+    ASSERT_LT(time, 1.0) << "premise of the test";
+    writeSeries({0, 0.5, time});
+
+    seriesWriter restarted(dir.string(), "case", 1.0);
+    EXPECT_EQ(restarted.entries().size(), 2u);
+    EXPECT_EQ(restarted.nextIndex(), 2u);
+    EXPECT_EQ(readCollection(pvd()).size(), 2u);
+}
+
+
+TEST_F(VtkSeries, restartAfterLastTimeKeepsEverything)
+{
+    writeSeries({0, 0.5});
+    const auto before = fs::last_write_time(pvd());
+
+    seriesWriter restarted(dir.string(), "case", 2);
+    EXPECT_EQ(restarted.entries().size(), 2u);
+    EXPECT_EQ(restarted.nextIndex(), 2u);
+    EXPECT_EQ(fs::last_write_time(pvd()), before) << "collection rewritten";
+}
+
+
+TEST_F(VtkSeries, roundTripsEmptyAndSmallParticleBlocks)
+{
+    const std::vector<double> positions = {0.5, 0.25,  1.5, 0.75,  -1, 2};
+    const std::vector<double> density = {1000, 1001.5, 999.25};
+    const std::vector<double> velocity = {1, 2,  3, 4,  5, 6};
+
+    {
+        seriesWriter writer(dir.string(), "case", 0);
+        const meshFields fields(0);
+        writer.write
+        (
+            0,
+            {fields.block()},
+            {
+                {"ghosts", 0, nullptr, {{"density", 1, nullptr}}},
+                {
+                    "particles", 3, positions.data(),
+                    {{"density", 1, density.data()},
+                     {"velocity", 2, velocity.data()}}
+                }
+            }
+        );
+    }
+
+    auto blocks = readMultiBlock(dir/"case_000000.vtm");
+    ASSERT_TRUE(blocks);
+    ASSERT_EQ(blocks->GetNumberOfBlocks(), 3u);
+    EXPECT_EQ(blockName(blocks, 0), "elements");
+    EXPECT_EQ(blockName(blocks, 1), "ghosts");
+    EXPECT_EQ(blockName(blocks, 2), "particles");
+
+    // Empty block: present by name, as poly data without points or cells
+    auto* ghosts = vtkPolyData::SafeDownCast(blocks->GetBlock(1));
+    ASSERT_TRUE(ghosts) << "empty particle block missing or not poly data";
+    EXPECT_EQ(ghosts->GetNumberOfPoints(), 0);
+    EXPECT_EQ(ghosts->GetNumberOfCells(), 0);
+
+    auto* particles = vtkPolyData::SafeDownCast(blocks->GetBlock(2));
+    ASSERT_TRUE(particles) << "particle block is not poly data";
+    ASSERT_EQ(particles->GetNumberOfPoints(), 3);
+    ASSERT_EQ(particles->GetNumberOfVerts(), 3);
+    ASSERT_EQ(particles->GetNumberOfCells(), 3);
+    vtkNew<vtkIdList> nodes;
+    for (vtkIdType i = 0; i < 3; ++i)
+    {
+        double x[3];
+        particles->GetPoint(i, x);
+        EXPECT_EQ(x[0], positions[2*i]);
+        EXPECT_EQ(x[1], positions[2*i + 1]);
+        EXPECT_EQ(x[2], 0.0);
+
+        EXPECT_EQ(particles->GetCellType(i), VTK_VERTEX);
+        particles->GetCellPoints(i, nodes);
+        ASSERT_EQ(nodes->GetNumberOfIds(), 1);
+        EXPECT_EQ(nodes->GetId(0), i);
+    }
+
+    vtkDataArray* rho = particles->GetPointData()->GetArray("density");
+    ASSERT_TRUE(rho);
+    ASSERT_EQ(rho->GetNumberOfComponents(), 1);
+    vtkDataArray* u = particles->GetPointData()->GetArray("velocity");
+    ASSERT_TRUE(u);
+    ASSERT_EQ(u->GetNumberOfComponents(), 3);
+    for (vtkIdType i = 0; i < 3; ++i)
+    {
+        EXPECT_EQ(rho->GetComponent(i, 0), density[i]);
+        EXPECT_EQ(u->GetComponent(i, 0), velocity[2*i]);
+        EXPECT_EQ(u->GetComponent(i, 1), velocity[2*i + 1]);
+        EXPECT_EQ(u->GetComponent(i, 2), 0.0);
+    }
+}
+
+
+TEST_F(VtkSeries, writesTimesWhereEveryBlockIsEmptyOrThereIsNone)
+{
+    // VTK's own multiblock writer writes no file at all in these cases
+    {
+        seriesWriter writer(dir.string(), "case", 0);
+        writer.write(0, {}, {});
+        writer.write
+        (
+            1,
+            {{"elements", 0, nullptr, 0, nullptr, {}, {}}},
+            {{"particles", 0, nullptr, {}}}
+        );
+    }
+
+    EXPECT_EQ
+    (
+        readCollection(pvd()),
+        (collectionEntries{{"0", "case_000000.vtm"}, {"1", "case_000001.vtm"}})
+    );
+
+    auto none = readMultiBlock(dir/"case_000000.vtm");
+    ASSERT_TRUE(none);
+    EXPECT_EQ(none->GetNumberOfBlocks(), 0u);
+
+    auto empty = readMultiBlock(dir/"case_000001.vtm");
+    ASSERT_TRUE(empty);
+    ASSERT_EQ(empty->GetNumberOfBlocks(), 2u);
+    EXPECT_EQ(blockName(empty, 0), "elements");
+    EXPECT_EQ(blockName(empty, 1), "particles");
+    auto* grid = vtkUnstructuredGrid::SafeDownCast(empty->GetBlock(0));
+    ASSERT_TRUE(grid);
+    EXPECT_EQ(grid->GetNumberOfPoints(), 0);
+    EXPECT_EQ(grid->GetNumberOfCells(), 0);
+    auto* cloud = vtkPolyData::SafeDownCast(empty->GetBlock(1));
+    ASSERT_TRUE(cloud);
+    EXPECT_EQ(cloud->GetNumberOfPoints(), 0);
+}
+
+
+TEST_F(VtkSeries, rejectsBadInputBeforeWritingAnything)
+{
+    seriesWriter writer(dir.string(), "case", 0);
+    const meshFields fields(0);
+
+    triangleBlock badComponents = fields.block();
+    badComponents.cellData.push_back({"strain", 4, fields.stress.data()});
+    EXPECT_THROW(writer.write(0, {badComponents}, {}), std::invalid_argument);
+
+    const std::vector<int> badTriangles = {0, 1, 2,  0, 2, 5,  1, 4, 2};
+    triangleBlock badLabel = fields.block();
+    badLabel.triangles = badTriangles.data();
+    EXPECT_THROW(writer.write(0, {badLabel}, {}), std::invalid_argument);
+
+    triangleBlock twice = fields.block();
+    twice.cellData.push_back({"pressure", 1, fields.pressure.data()});
+    EXPECT_THROW(writer.write(0, {twice}, {}), std::invalid_argument);
+
+    EXPECT_THROW(seriesWriter(dir.string(), "", 0), std::invalid_argument);
+
+    EXPECT_FALSE(fs::exists(dir)) << "bad input reached the disk";
+    EXPECT_EQ(writer.nextIndex(), 0u);
+}
+
+
+TEST_F(VtkSeries, restartFromUnreadableCollectionThrows)
+{
+    fs::create_directories(dir);
+    std::ofstream(pvd()) << "<VTKFile type=\"Collection\"><Collection>";
+    EXPECT_THROW(seriesWriter(dir.string(), "case", 0), std::runtime_error);
+}
+
+
+TEST_F(VtkSeries, opensInParaViewWhenPvpythonIsAvailable)
+{
+    if (std::system("command -v pvpython > /dev/null 2>&1") != 0)
+    {
+        GTEST_SKIP() << "pvpython not on PATH (Debian package paraview)";
+    }
+
+    const std::vector<double> positions = {0.5, 0.25,  1.5, 0.75};
+    {
+        seriesWriter writer(dir.string(), "case", 0);
+        for (const double t : {0.0, 0.5})
+        {
+            const meshFields fields(t);
+            writer.write
+            (
+                t,
+                {fields.block()},
+                {{"particles", 2, positions.data(), {}}}
+            );
+        }
+    }
+
+    const fs::path script = dir/"openSeries.py";
+    std::ofstream(script)
+        << "import sys\n"
+        << "from paraview.simple import OpenDataFile, servermanager\n"
+        << "reader = OpenDataFile(sys.argv[1])\n"
+        << "reader.UpdatePipelineInformation()\n"
+        << "times = list(reader.TimestepValues)\n"
+        << "assert times == [0.0, 0.5], times\n"
+        << "reader.UpdatePipeline(0.5)\n"
+        << "data = servermanager.Fetch(reader)\n"
+        << "n = data.GetNumberOfBlocks()\n"
+        << "assert n == 2, n\n"
+        << "names = [data.GetMetaData(i).Get(data.NAME()) for i in range(n)]\n"
+        << "assert names == ['elements', 'particles'], names\n"
+        << "assert data.GetBlock(0).GetNumberOfCells() == 3\n"
+        << "print('pvpython opened the series')\n";
+
+    const std::string command =
+        "pvpython " + script.string() + " " + pvd().string();
+    EXPECT_EQ(std::system(command.c_str()), 0) << command;
+}
+
+
+// ************************************************************************* //
