@@ -59,10 +59,33 @@ int main(int argc, char *argv[])
             << exit(FatalIOError);
     }
 
+    if (maxCo > 1)
+    {
+        WarningInFunction
+            << "maxCo " << maxCo << " > 1: the explicit central-difference"
+            << " scheme is unstable above Courant number 1" << nl << endl;
+    }
+
     // Forces and stable step of the initial state; the initial state goes
     // to the ParaView series
     model.evaluate();
     model.write(runTime.timeIndex() == 0);
+
+    //- Stop if a fixed time step exceeds the stable one
+    auto checkFixedTimeStep = [&](const scalar stable)
+    {
+        if (runTime.deltaTValue() > maxCo*stable*(1 + 1e-12))
+        {
+            FatalIOErrorInFunction(controls)
+                << "deltaT " << runTime.deltaTValue()
+                << " exceeds the stable time step: Courant number "
+                << runTime.deltaTValue()/stable << " > maxCo " << maxCo
+                << " (stable deltaT at Courant number 1: " << stable << ")."
+                << nl << "    Reduce deltaT below " << maxCo*stable
+                << " or set adjustTimeStep yes." << exit(FatalIOError);
+        }
+    };
+    if (!adjustTimeStep) checkFixedTimeStep(model.stableDeltaT());
 
     Info<< "Starting time loop" << nl << endl;
 
@@ -74,15 +97,9 @@ int main(int argc, char *argv[])
         {
             runTime.setDeltaT(min(maxCo*stable, maxDeltaT));
         }
-        else if (runTime.deltaTValue() > maxCo*stable*(1 + 1e-12))
+        else
         {
-            FatalIOErrorInFunction(controls)
-                << "deltaT " << runTime.deltaTValue()
-                << " exceeds the stable time step: Courant number "
-                << runTime.deltaTValue()/stable << " > maxCo " << maxCo
-                << " (stable deltaT at Courant number 1: " << stable << ")."
-                << nl << "    Reduce deltaT below " << maxCo*stable
-                << " or set adjustTimeStep yes." << exit(FatalIOError);
+            checkFixedTimeStep(stable);
         }
 
         ++runTime;

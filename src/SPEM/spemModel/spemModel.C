@@ -4,6 +4,7 @@
 #include "uniformDimensionedFields.H"
 #include "OSspecific.H"
 #include "vtkSeriesWriter.H"
+#include "checkKeywords.H"
 
 #include <cmath>
 #include <stdexcept>
@@ -82,6 +83,7 @@ void Foam::spemModel::readBoundaries()
                 << "': every mesh patch needs a condition, one of "
                 << patchTypeNames << exit(FatalIOError);
         }
+        checkKeywords(bcDict.subDict(name), {"type"});
         patchTypes_[p] = patchTypeNames.get("type", bcDict.subDict(name));
     }
 
@@ -277,8 +279,14 @@ Foam::spemModel::spemModel(const Time& runTime)
         )
     ),
     method_(methodTypeNames.get("method", schemes_)),
-    mesh_(triMesh::read(runTime))
+    mesh_(triMesh::read(runTime)),
+    lastWrittenTime_(-GREAT)
 {
+    checkKeywords
+    (
+        *this, {"regions", "boundaries", "damping", "slipCornerAngle"}
+    );
+    checkKeywords(schemes_, {"method"});
     if (method_ != methodType::SPEM)
     {
         FatalIOErrorInFunction(schemes_)
@@ -292,6 +300,7 @@ Foam::spemModel::spemModel(const Time& runTime)
     readGravity();
 
     const dictionary* dampingDict = findDict("damping");
+    if (dampingDict) checkKeywords(*dampingDict, {"massProportional"});
     const scalar alpha =
         dampingDict
       ? dampingDict->getOrDefault<scalar>("massProportional", 0)
@@ -345,6 +354,8 @@ void Foam::spemModel::stopWithLastGoodState()
     {
         elements_->revert();
         runTime.setTime(tFail - runTime.deltaTValue(), runTime.timeIndex() - 1);
+        // Stresses of the good state for the output (it evaluated before)
+        elements_->evaluate();
     }
     write(true);
     FatalErrorInFunction
@@ -372,6 +383,8 @@ void Foam::spemModel::advance()
 void Foam::spemModel::write(const bool force)
 {
     if (!force && !runTime_.writeTime()) return;
+    if (runTime_.value() == lastWrittenTime_) return;
+    lastWrittenTime_ = runTime_.value();
     writeState();
     writeVTK();
     if (force)

@@ -21,7 +21,7 @@ bool Foam::linearElastic::stress
 ) const
 {
     const scalar lambda = lambda_, mu = mu_;
-    #pragma omp parallel for schedule(static)
+    #pragma omp parallel for schedule(static) if(end - begin > minParallelLoop)
     for (label k = begin; k < end; ++k)
     {
         const scalar* g = grad + 4*k;

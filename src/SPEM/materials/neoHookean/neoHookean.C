@@ -21,7 +21,7 @@ bool Foam::neoHookean::stress
 ) const
 {
     bool ok = true;
-    #pragma omp parallel for schedule(static) reduction(&&: ok)
+    #pragma omp parallel for schedule(static) reduction(&&: ok) if(end - begin > minParallelLoop)
     for (label k = begin; k < end; ++k)
     {
         const scalar* g = grad + 4*k;

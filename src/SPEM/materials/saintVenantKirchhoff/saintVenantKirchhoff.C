@@ -49,7 +49,7 @@ bool Foam::saintVenantKirchhoff::stress
 ) const
 {
     bool ok = true;
-    #pragma omp parallel for schedule(static) reduction(&&: ok)
+    #pragma omp parallel for schedule(static) reduction(&&: ok) if(end - begin > minParallelLoop)
     for (label k = begin; k < end; ++k)
     {
         scalar F[4], S[3], E[3];

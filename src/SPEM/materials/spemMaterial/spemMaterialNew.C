@@ -1,4 +1,5 @@
 #include "spemMaterial.H"
+#include "checkKeywords.H"
 
 Foam::autoPtr<Foam::spemMaterial> Foam::spemMaterial::New
 (
@@ -28,5 +29,7 @@ Foam::autoPtr<Foam::spemMaterial> Foam::spemMaterial::New
         ) << exit(FatalIOError);
     }
 
-    return cstrIter()(name, dict);
+    autoPtr<spemMaterial> model(cstrIter()(name, dict));
+    checkKeywords(dict, model->keywords());
+    return model;
 }

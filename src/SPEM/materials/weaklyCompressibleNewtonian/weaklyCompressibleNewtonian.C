@@ -39,7 +39,7 @@ bool Foam::weaklyCompressibleNewtonian::stress
 ) const
 {
     const scalar c2 = c_*c_, rho0 = rho_, twoMu = 2*mu_;
-    #pragma omp parallel for schedule(static)
+    #pragma omp parallel for schedule(static) if(end - begin > minParallelLoop)
     for (label k = begin; k < end; ++k)
     {
         const scalar* g = grad + 4*k;

@@ -243,7 +243,7 @@ bool Foam::elementModel::elementPass()
             const scalar nu = mat.kinematicViscosity();
             scalar hMin = std::numeric_limits<scalar>::max();
             bool regionOk = true;
-            #pragma omp parallel for schedule(static) reduction(min: hMin) reduction(&&: regionOk)
+            #pragma omp parallel for schedule(static) reduction(min: hMin) reduction(&&: regionOk) if(end - begin > minParallelLoop)
             for (label el = begin; el < end; ++el)
             {
                 const label* n = &elemNodes_[3*el];
@@ -277,7 +277,7 @@ bool Foam::elementModel::elementPass()
         {
             // Performance critical: every solid element, every step
             const scalar* X = X_.data();
-            #pragma omp parallel for schedule(static)
+            #pragma omp parallel for schedule(static) if(end - begin > minParallelLoop)
             for (label el = begin; el < end; ++el)
             {
                 const label* n = &elemNodes_[3*el];
@@ -308,7 +308,7 @@ bool Foam::elementModel::domainPass()
         const bool fluid = materials_[r].isFluid();
 
         // Performance critical: every domain, every step (eq. 2)
-        #pragma omp parallel for schedule(static)
+        #pragma omp parallel for schedule(static) if(end - begin > minParallelLoop)
         for (label k = begin; k < end; ++k)
         {
             const label e0 = domainElems_[2*k], e1 = domainElems_[2*k + 1];
@@ -349,7 +349,7 @@ void Foam::elementModel::forcePass()
     const scalar third = 1.0/3.0;
 
     // Performance critical: every element, every step (eq. 5)
-    #pragma omp parallel for schedule(static)
+    #pragma omp parallel for schedule(static) if(nEl > minParallelLoop)
     for (label el = 0; el < nEl; ++el)
     {
         const label* d = &elemDomains_[3*el];
@@ -389,6 +389,7 @@ Foam::elementModel::elementModel
     cur_(0),
     nodeConstraint_(nNodes_, constraint::free),
     nodeNormal_(2*nNodes_, 0),
+    nodeReaction_(2*nNodes_, 0),
     gravity_{0, 0},
     massDamping_(0),
     solidTimeScale_(0),
@@ -471,8 +472,10 @@ bool Foam::elementModel::advance(const scalar dt)
     const scalar keep = (1 - damp)/(1 + damp), gain = dt/(1 + damp);
     bool finite = true;
 
+    scalar* reaction = nodeReaction_.data();
+
     // Performance critical: every node, every step
-    #pragma omp parallel for schedule(static) reduction(&&: finite)
+    #pragma omp parallel for schedule(static) reduction(&&: finite) if(nNodes_ > minParallelLoop)
     for (label n = 0; n < nNodes_; ++n)
     {
         scalar f[2] = {0, 0};
@@ -488,21 +491,24 @@ bool Foam::elementModel::advance(const scalar dt)
             keep*v[2*n] + gain*(f[0]*invM + gx),
             keep*v[2*n + 1] + gain*(f[1]*invM + gy)
         };
-        switch (nodeConstraint_[n])
+        if (nodeConstraint_[n] != constraint::free)
         {
-            case constraint::free:
-                break;
-            case constraint::slip:
+            const scalar vFree[2] = {vn[0], vn[1]};
+            if (nodeConstraint_[n] == constraint::slip)
             {
                 const scalar* nn = &nodeNormal_[2*n];
                 const scalar vnn = vn[0]*nn[0] + vn[1]*nn[1];
                 vn[0] -= vnn*nn[0];
                 vn[1] -= vnn*nn[1];
-                break;
             }
-            case constraint::fixed:
+            else
+            {
                 vn[0] = vn[1] = 0;
-                break;
+            }
+            // The force that removed the constrained velocity
+            const scalar mOverGain = nodeMass_[n]/gain;
+            reaction[2*n] = mOverGain*(vn[0] - vFree[0]);
+            reaction[2*n + 1] = mOverGain*(vn[1] - vFree[1]);
         }
         vNew[2*n] = vn[0];
         vNew[2*n + 1] = vn[1];

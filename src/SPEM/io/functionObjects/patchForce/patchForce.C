@@ -31,7 +31,7 @@ bool Foam::functionObjects::patchForce::read(const dictionary& dict)
     writeFile::read(dict);
     const wordList patches = dict.get<wordList>("patches");
     const triMesh& mesh = model().mesh();
-    segments_.clear();
+    std::vector<bool> selected(mesh.nPoints(), false);
     for (const word& p : patches)
     {
         const label pi = mesh.findPatch(p);
@@ -43,8 +43,15 @@ bool Foam::functionObjects::patchForce::read(const dictionary& dict)
         }
         for (label s = 0; s < mesh.nSegments(); ++s)
         {
-            if (mesh.segmentPatch()[s] == pi) segments_.push_back(s);
+            if (mesh.segmentPatch()[s] != pi) continue;
+            selected[mesh.segments()[2*s]] = true;
+            selected[mesh.segments()[2*s + 1]] = true;
         }
+    }
+    nodes_.clear();
+    for (label n = 0; n < mesh.nPoints(); ++n)
+    {
+        if (selected[n]) nodes_.push_back(n);
     }
     return true;
 }
@@ -52,30 +59,12 @@ bool Foam::functionObjects::patchForce::read(const dictionary& dict)
 
 bool Foam::functionObjects::patchForce::write()
 {
-    const spemModel& m = model();
-    const elementModel& em = m.elements();
-    const triMesh& mesh = m.mesh();
-    const std::vector<scalar>& stress = em.domainStress();
-
+    const std::vector<scalar>& R = model().elements().constraintReactions();
     scalar F[2] = {0, 0};
-    for (const label s : segments_)
+    for (const label n : nodes_)
     {
-        const label k = em.segmentDomain()[s];
-        // The region of the domain decides the configuration
-        label r = 0;
-        while (k >= em.regions()[r].domainEnd) ++r;
-        const std::vector<scalar>& x =
-            em.material(r).isFluid() ? em.positions() : em.referencePositions();
-        const label a = mesh.segments()[2*s], b = mesh.segments()[2*s + 1];
-        // Outward normal times length: the element lies left of a -> b
-        const scalar nA[2] =
-        {
-            x[2*b + 1] - x[2*a + 1],
-            -(x[2*b] - x[2*a])
-        };
-        const scalar* P = &stress[4*k];
-        F[0] -= P[0]*nA[0] + P[1]*nA[1];
-        F[1] -= P[2]*nA[0] + P[3]*nA[1];
+        F[0] -= R[2*n];
+        F[1] -= R[2*n + 1];
     }
     if (writeToFile())
     {

@@ -31,8 +31,8 @@ Foam::functionObjects::pressureProbe::pressureProbe
         OFstream& os = file();
         for (label i = 0; i < columns.size(); ++i)
         {
-            os  << "# Probe " << i << " (" << locations_[2*i] << ' '
-                << locations_[2*i + 1] << ')' << nl;
+            os  << "# Probe " << i << " (" << Foam::name(locations_[2*i])
+                << ' ' << Foam::name(locations_[2*i + 1]) << ')' << nl;
         }
     }
     writeColumns(columns);

@@ -10,7 +10,11 @@ Foam::functionObjects::spemFunctionObject::spemFunctionObject
 :
     timeFunctionObject(name, runTime),
     writeFile(runTime, name, name, dict)
-{}
+{
+    // writeFile sets a field width for its value columns, which would pad
+    // the first header line
+    if (writeToFile()) file().width(0);
+}
 
 
 const Foam::spemModel&
