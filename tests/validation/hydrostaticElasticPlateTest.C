@@ -100,7 +100,7 @@ double runTutorial(const int nx)
     const std::string run = "cd '" + caseDir.string() + "' && ";
     for
     (
-        const std::string program :
+        const std::string& program :
         {
             std::string("blockMesh"), std::string(SPEM_MESH_CONVERT),
             std::string(SPEM_FOAM)
