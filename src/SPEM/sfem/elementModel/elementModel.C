@@ -159,19 +159,6 @@ void Foam::elementModel::build(const triMesh& mesh)
         regionDomains[r].shrink_to_fit();
     }
 
-    // Domain of each boundary segment (its edge has one triangle)
-    segmentDomain_.assign(mesh.nSegments(), -1);
-    for (label s = 0; s < mesh.nSegments(); ++s)
-    {
-        const label k = mesh.segmentEdge()[s];
-        const label el = triElem[edgeTri[2*k]];
-        const label t = elemTriangle_[el];
-        for (label i = 0; i < 3; ++i)
-        {
-            if (triEdges[3*t + i] == k) segmentDomain_[s] = elemDomains_[3*el + i];
-        }
-    }
-
     // Node-element adjacency
     nodeElemStart_.assign(nNodes_ + 1, 0);
     for (label n : elemNodes_) ++nodeElemStart_[n + 1];
@@ -523,16 +510,6 @@ bool Foam::elementModel::advance(const scalar dt)
         return false;
     }
     return true;
-}
-
-
-Foam::label Foam::elementModel::elementRegion(const label e) const
-{
-    for (label r = 0; r < regions_.size(); ++r)
-    {
-        if (e < regions_[r].elemEnd) return r;
-    }
-    return -1;
 }
 
 
