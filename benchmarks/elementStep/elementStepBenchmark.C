@@ -351,7 +351,6 @@ std::vector<modelArray> modelArrays(const elementModel& em)
         {"elemNodes_", bytes(em.elementNodes()), true},
         {"elemTriangle_", bytes(em.elementTriangle()), false},
         {"elemDomains_", bytes(em.elementDomains()), true},
-        {"elemAreaGradN_ *", 6*E*S, true},
         {"elemArea_ *", E*S, true},
         {"elemAreaGrad_ *", 4*E*S, true},
         {"elemForce_ *", 6*E*S, true},

@@ -170,7 +170,6 @@ void Foam::elementModel::build(const triMesh& mesh)
     }
 
     // Reference geometry, lumped masses, domain masses, solid time scale
-    elemAreaGradN_.resize(6*nTri);
     elemArea_.resize(nTri);
     elemAreaGrad_.assign(4*nTri, 0);
     elemForce_.assign(6*nTri, 0);
@@ -188,9 +187,10 @@ void Foam::elementModel::build(const triMesh& mesh)
         for (label el = regions_[r].elemBegin; el < regions_[r].elemEnd; ++el)
         {
             const label* n = &elemNodes_[3*el];
+            scalar AgradN[6];
             const scalar A = triangleAreaGradN
             (
-                &X_[2*n[0]], &X_[2*n[1]], &X_[2*n[2]], &elemAreaGradN_[6*el]
+                &X_[2*n[0]], &X_[2*n[1]], &X_[2*n[2]], AgradN
             );
             elemArea_[el] = A;
             for (label a = 0; a < 3; ++a) nodeMass_[n[a]] += rho*A/3;
@@ -237,7 +237,7 @@ bool Foam::elementModel::elementPass()
                 const scalar* x0 = x + 2*n[0];
                 const scalar* x1 = x + 2*n[1];
                 const scalar* x2 = x + 2*n[2];
-                scalar* AgradN = &elemAreaGradN_[6*el];
+                scalar AgradN[6];
                 const scalar A = triangleAreaGradN(x0, x1, x2, AgradN);
                 elemArea_[el] = A;
                 regionOk = regionOk && A > 0;
@@ -274,10 +274,11 @@ bool Foam::elementModel::elementPass()
                     u[a][0] = x[2*n[a]] - X[2*n[a]];
                     u[a][1] = x[2*n[a] + 1] - X[2*n[a] + 1];
                 }
-                areaGradient
-                (
-                    &elemAreaGradN_[6*el], u[0], u[1], u[2], &elemAreaGrad_[4*el]
-                );
+                // Reference A grad N: recomputing it is cheaper than
+                // streaming it from memory
+                scalar AgradN[6];
+                triangleAreaGradN(X + 2*n[0], X + 2*n[1], X + 2*n[2], AgradN);
+                areaGradient(AgradN, u[0], u[1], u[2], &elemAreaGrad_[4*el]);
             }
         }
     }
@@ -332,29 +333,38 @@ bool Foam::elementModel::domainPass()
 
 void Foam::elementModel::forcePass()
 {
-    const label nEl = nElements();
     const scalar third = 1.0/3.0;
 
-    // Performance critical: every element, every step (eq. 5)
-    #pragma omp parallel for schedule(static) if(nEl > minParallelLoop)
-    for (label el = 0; el < nEl; ++el)
+    for (label r = 0; r < regions_.size(); ++r)
     {
-        const label* d = &elemDomains_[3*el];
-        scalar P[4];
-        for (label i = 0; i < 4; ++i)
+        // Current configuration for fluids, reference for solids
+        const scalar* x =
+            materials_[r].isFluid() ? x_[cur_].data() : X_.data();
+        const label begin = regions_[r].elemBegin, end = regions_[r].elemEnd;
+
+        // Performance critical: every element, every step (eq. 5)
+        #pragma omp parallel for schedule(static) if(end - begin > minParallelLoop)
+        for (label el = begin; el < end; ++el)
         {
-            P[i] = third*
-            (
-                domainStress_[4*d[0] + i] + domainStress_[4*d[1] + i]
-              + domainStress_[4*d[2] + i]
-            );
-        }
-        const scalar* AgradN = &elemAreaGradN_[6*el];
-        scalar* f = &elemForce_[6*el];
-        for (label a = 0; a < 3; ++a)
-        {
-            f[2*a] = -(P[0]*AgradN[2*a] + P[1]*AgradN[2*a + 1]);
-            f[2*a + 1] = -(P[2]*AgradN[2*a] + P[3]*AgradN[2*a + 1]);
+            const label* d = &elemDomains_[3*el];
+            scalar P[4];
+            for (label i = 0; i < 4; ++i)
+            {
+                P[i] = third*
+                (
+                    domainStress_[4*d[0] + i] + domainStress_[4*d[1] + i]
+                  + domainStress_[4*d[2] + i]
+                );
+            }
+            const label* n = &elemNodes_[3*el];
+            scalar AgradN[6];
+            triangleAreaGradN(x + 2*n[0], x + 2*n[1], x + 2*n[2], AgradN);
+            scalar* f = &elemForce_[6*el];
+            for (label a = 0; a < 3; ++a)
+            {
+                f[2*a] = -(P[0]*AgradN[2*a] + P[1]*AgradN[2*a + 1]);
+                f[2*a + 1] = -(P[2]*AgradN[2*a] + P[3]*AgradN[2*a + 1]);
+            }
         }
     }
 }
