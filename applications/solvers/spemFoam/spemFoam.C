@@ -17,7 +17,10 @@ Usage
         adjustTimeStep  yes: deltaT = maxCo * stable step, bounded by
                         maxDeltaT; no: a deltaT above maxCo times the stable
                         step stops the run (default no)
-        maxCo           Courant number on the fastest wave speed (default 0.5)
+        maxCo           Courant number on the fastest wave speed and the
+                        smallest element altitude (default 0.9; the measured
+                        critical value is 1.33-1.64 on regular meshes, see
+                        tests/validation/stabilityTests.C)
         maxDeltaT       upper bound on the adjusted step (default great)
         logInterval     steps between log entries (default 100; every write
                         time is logged too)
@@ -49,7 +52,7 @@ int main(int argc, char *argv[])
     const dictionary& controls = runTime.controlDict();
     const bool adjustTimeStep =
         controls.getOrDefault<Switch>("adjustTimeStep", false);
-    const scalar maxCo = controls.getOrDefault<scalar>("maxCo", 0.5);
+    const scalar maxCo = controls.getOrDefault<scalar>("maxCo", 0.9);
     const scalar maxDeltaT = controls.getOrDefault<scalar>("maxDeltaT", GREAT);
     const label logInterval = controls.getOrDefault<label>("logInterval", 100);
     if (!(maxCo > 0) || logInterval < 1)
