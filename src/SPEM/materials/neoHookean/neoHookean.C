@@ -24,9 +24,8 @@ bool Foam::neoHookean::stress
     #pragma omp parallel for schedule(static) reduction(&&: ok) if(end - begin > minParallelLoop)
     for (label k = begin; k < end; ++k)
     {
-        const scalar* g = grad + 4*k;
-        const scalar F[4] = {1 + g[0], g[1], g[2], 1 + g[3]};
-        const scalar J = F[0]*F[3] - F[1]*F[2];
+        scalar F[4];
+        const scalar J = deformationGradient(grad + 4*k, F);
         scalar* P = stress + 4*k;
         if (!(J > 0))
         {
@@ -52,9 +51,8 @@ void Foam::neoHookean::cauchyStress
 {
     for (label k = begin; k < end; ++k)
     {
-        const scalar* g = grad + 4*k;
-        const scalar F[4] = {1 + g[0], g[1], g[2], 1 + g[3]};
-        const scalar J = F[0]*F[3] - F[1]*F[2];
+        scalar F[4];
+        const scalar J = deformationGradient(grad + 4*k, F);
         const scalar lnJ = std::log(J);
         // sigma = (mu (B - I) + lambda ln J I)/J, B = F F^T
         scalar* s = sigma6 + 6*(k - begin);
@@ -76,9 +74,8 @@ void Foam::neoHookean::strainEnergyDensity
 {
     for (label k = begin; k < end; ++k)
     {
-        const scalar* g = grad + 4*k;
-        const scalar F[4] = {1 + g[0], g[1], g[2], 1 + g[3]};
-        const scalar J = F[0]*F[3] - F[1]*F[2];
+        scalar F[4];
+        const scalar J = deformationGradient(grad + 4*k, F);
         const scalar lnJ = std::log(J);
         const scalar trC = F[0]*F[0] + F[1]*F[1] + F[2]*F[2] + F[3]*F[3];
         energy[k - begin] =

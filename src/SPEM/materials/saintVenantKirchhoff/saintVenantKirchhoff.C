@@ -11,14 +11,13 @@ namespace
 {
 
 //- Second Piola-Kirchhoff stress S (xx, xy, yy) and Green-Lagrange strain
-//  of F = I + g; returns J = det F
-inline Foam::scalar svk
+//  E of the deformation gradient F
+inline void svk
 (
-    const Foam::scalar* g, const Foam::scalar lambda, const Foam::scalar mu,
-    Foam::scalar F[4], Foam::scalar S[3], Foam::scalar E[3]
+    const Foam::scalar F[4], const Foam::scalar lambda, const Foam::scalar mu,
+    Foam::scalar S[3], Foam::scalar E[3]
 )
 {
-    F[0] = 1 + g[0]; F[1] = g[1]; F[2] = g[2]; F[3] = 1 + g[3];
     E[0] = 0.5*(F[0]*F[0] + F[2]*F[2] - 1);
     E[1] = 0.5*(F[0]*F[1] + F[2]*F[3]);
     E[2] = 0.5*(F[1]*F[1] + F[3]*F[3] - 1);
@@ -26,7 +25,6 @@ inline Foam::scalar svk
     S[0] = lambda*trE + 2*mu*E[0];
     S[1] = 2*mu*E[1];
     S[2] = lambda*trE + 2*mu*E[2];
-    return F[0]*F[3] - F[1]*F[2];
 }
 
 } // End anonymous namespace
@@ -53,8 +51,9 @@ bool Foam::saintVenantKirchhoff::stress
     for (label k = begin; k < end; ++k)
     {
         scalar F[4], S[3], E[3];
-        const scalar J = svk(grad + 4*k, lambda_, mu_, F, S, E);
+        const scalar J = deformationGradient(grad + 4*k, F);
         ok = ok && J > 0;
+        svk(F, lambda_, mu_, S, E);
         scalar* P = stress + 4*k;
         P[0] = F[0]*S[0] + F[1]*S[1];
         P[1] = F[0]*S[1] + F[1]*S[2];
@@ -75,7 +74,8 @@ void Foam::saintVenantKirchhoff::cauchyStress
     for (label k = begin; k < end; ++k)
     {
         scalar F[4], S[3], E[3];
-        const scalar J = svk(grad + 4*k, lambda_, mu_, F, S, E);
+        const scalar J = deformationGradient(grad + 4*k, F);
+        svk(F, lambda_, mu_, S, E);
         // sigma = F S F^T / J
         const scalar FS[4] =
         {
@@ -102,7 +102,8 @@ void Foam::saintVenantKirchhoff::strainEnergyDensity
     for (label k = begin; k < end; ++k)
     {
         scalar F[4], S[3], E[3];
-        svk(grad + 4*k, lambda_, mu_, F, S, E);
+        deformationGradient(grad + 4*k, F);
+        svk(F, lambda_, mu_, S, E);
         const scalar trE = E[0] + E[2];
         energy[k - begin] = 0.5*lambda_*trE*trE
           + mu_*(E[0]*E[0] + 2*E[1]*E[1] + E[2]*E[2]);

@@ -41,9 +41,8 @@ void Foam::spemMaterial::density
     // Total Lagrangian: rho = rho0 / J
     for (label k = begin; k < end; ++k)
     {
-        const scalar* g = grad + 4*k;
-        const scalar J = (1 + g[0])*(1 + g[3]) - g[1]*g[2];
-        rho[k - begin] = rho_/J;
+        scalar F[4];
+        rho[k - begin] = rho_/deformationGradient(grad + 4*k, F);
     }
 }
 
