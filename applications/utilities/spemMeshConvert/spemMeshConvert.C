@@ -224,16 +224,6 @@ int main(int argc, char *argv[])
     const splitType split = readSplit(convertDict, "split");
     Info<< "Splitting quads: split " << splitTypeNames[split] << nl;
     const dictionary* regionSplitDict = convertDict.findDict("regionSplit");
-    if (regionSplitDict)
-    {
-        for (const entry& e : *regionSplitDict)
-        {
-            Info<< "    region " << e.keyword() << ": split "
-                << splitTypeNames[readSplit(*regionSplitDict, e.keyword())]
-                << nl;
-        }
-    }
-    Info<< endl;
 
 
     // Mesh
@@ -489,12 +479,16 @@ int main(int argc, char *argv[])
                     << exit(FatalIOError);
             }
             const splitType zoneSplit = readSplit(*regionSplitDict, e.keyword());
+            Info<< "    region " << e.keyword() << ": split "
+                << splitTypeNames[zoneSplit] << nl;
             forAll(cellSplit, celli)
             {
                 if (cellRegion[celli] == r) cellSplit[celli] = zoneSplit;
             }
         }
     }
+    Info<< endl;
+
     // Centre node of each cross-split cell, numbered after the front nodes
     labelList centreNodeOfCell(mesh.nCells(), -1);
     label nCentreNodes = 0;
