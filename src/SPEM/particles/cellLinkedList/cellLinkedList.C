@@ -1,0 +1,353 @@
+#include "cellLinkedList.H"
+#include "spemMaterial.H"
+#include "error.H"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+// * * * * * * * * * * * * * * * Local Functions * * * * * * * * * * * * * * //
+
+namespace
+{
+
+using Foam::label;
+using Foam::scalar;
+
+//- Loops shorter than this run on one thread (see spemMaterial)
+constexpr label minParallelLoop = Foam::spemMaterial::minParallelLoop;
+
+//- Relative enlargement of the cell size: a pair closer than the requested
+//  size then always lies in adjacent cells, whatever the rounding of the
+//  cell indices (a few ulp of the index, below 1e-11 for 1e5 cells a row)
+constexpr scalar cellSizeMargin = 1e-9;
+
+//- Resize, growing the capacity with slack when it must grow, so that
+//  small changes of the size from step to step do not reallocate
+template<class Type>
+void resizeWithSlack(std::vector<Type>& v, const std::size_t n)
+{
+    if (n > v.capacity())
+    {
+        v.reserve(n + n/4 + 16);
+    }
+    v.resize(n);
+}
+
+template<class Type>
+std::size_t capacityBytes(const std::vector<Type>& v)
+{
+    return v.capacity()*sizeof(Type);
+}
+
+} // End anonymous namespace
+
+
+// * * * * * * * * * * * * * Private Member Functions  * * * * * * * * * * * //
+
+void Foam::cellLinkedList::reportNonFinite(const particleSet& particles) const
+{
+    const std::vector<scalar>& x = particles.positions();
+    for (label i = 0; i < particles.size(); ++i)
+    {
+        if (!std::isfinite(x[2*i]) || !std::isfinite(x[2*i + 1]))
+        {
+            FatalErrorInFunction
+                << "Particle " << i << " (id " << particles.id()[i]
+                << ") has a non-finite position (" << x[2*i] << ' '
+                << x[2*i + 1] << "): the neighbour search cannot place it in"
+                << " a cell. The time step is probably unstable."
+                << exit(FatalError);
+        }
+    }
+}
+
+
+void Foam::cellLinkedList::reportFarParticle
+(
+    const particleSet& particles,
+    const scalar nCells,
+    const scalar maxCells
+) const
+{
+    // The particle farthest from the component-wise median position: a
+    // lone particle that flew away moves the bounding box, not the median
+    const label n = particles.size();
+    const std::vector<scalar>& x = particles.positions();
+    std::vector<scalar> coord(n);
+    scalar median[2];
+    for (label d = 0; d < 2; ++d)
+    {
+        for (label i = 0; i < n; ++i) coord[i] = x[2*i + d];
+        std::nth_element(coord.begin(), coord.begin() + n/2, coord.end());
+        median[d] = coord[n/2];
+    }
+    label far = 0;
+    scalar farDist = -1;
+    for (label i = 0; i < n; ++i)
+    {
+        const scalar d = std::hypot(x[2*i] - median[0], x[2*i + 1] - median[1]);
+        if (d > farDist)
+        {
+            far = i;
+            farDist = d;
+        }
+    }
+
+    FatalErrorInFunction
+        << "Particle " << far << " (id " << particles.id()[far]
+        << ") at (" << x[2*far] << ' ' << x[2*far + 1] << ") has flown away:"
+        << " it is " << farDist << " m from the median particle position ("
+        << median[0] << ' ' << median[1] << ") and the grid of cells of size "
+        << cellSize_ << " over the bounding box of the " << n
+        << " particles would need " << nCells << " cells, more than the"
+        << " limit of " << maxCells << " (" << maxCellsPerParticle_
+        << " per particle + " << extraCells_ << "). The time step is"
+        << " probably unstable or the particle escaped through a wall."
+        << exit(FatalError);
+}
+
+
+void Foam::cellLinkedList::checkSupport
+(
+    const particleSet& particles,
+    const scalar kappa
+) const
+{
+    if (particles.size() != nParticles_)
+    {
+        FatalErrorInFunction
+            << "The cell list was built for " << nParticles_
+            << " particles, the set has " << particles.size()
+            << ": call update() first" << exit(FatalError);
+    }
+    if (kappa*hMax_ > cellSize_)
+    {
+        FatalErrorInFunction
+            << "Cells of size " << cellSize_ << " cannot hold every"
+            << " neighbour for support radius kappa max(h) = " << kappa
+            << " x " << hMax_ << " = " << kappa*hMax_
+            << ": update() with a cell size >= kappa max(h)"
+            << exit(FatalError);
+    }
+}
+
+
+// * * * * * * * * * * * * * * * * Constructors  * * * * * * * * * * * * * * //
+
+Foam::cellLinkedList::cellLinkedList
+(
+    const label maxCellsPerParticle,
+    const label extraCells
+)
+:
+    maxCellsPerParticle_(maxCellsPerParticle),
+    extraCells_(extraCells),
+    nParticles_(0),
+    x0_(0),
+    y0_(0),
+    cellSize_(1),
+    invCellSize_(1),
+    nx_(1),
+    ny_(1),
+    hMax_(0),
+    cellStart_(2, 0)
+{}
+
+
+// * * * * * * * * * * * * * * * Member Functions  * * * * * * * * * * * * * //
+
+void Foam::cellLinkedList::update
+(
+    const particleSet& particles,
+    const scalar cellSize
+)
+{
+    if (!(cellSize > 0) || !std::isfinite(cellSize))
+    {
+        FatalErrorInFunction
+            << "Cell size " << cellSize << " is not a positive number"
+            << exit(FatalError);
+    }
+
+    const label n = particles.size();
+    const scalar* __restrict__ x = particles.positions().data();
+    const scalar* __restrict__ h = particles.smoothingLength().data();
+
+    // Bounding box and largest h; non-finite positions are counted, not
+    // reported here (no exception may leave a parallel region)
+    constexpr scalar big = std::numeric_limits<scalar>::max();
+    scalar xMin = big, yMin = big, xMax = -big, yMax = -big, hMax = 0;
+    label nNonFinite = 0;
+    #pragma omp parallel for schedule(static) reduction(min: xMin, yMin) reduction(max: xMax, yMax, hMax) reduction(+: nNonFinite) if(n > minParallelLoop)
+    for (label i = 0; i < n; ++i)
+    {
+        const scalar xi = x[2*i], yi = x[2*i + 1];
+        if (!std::isfinite(xi) || !std::isfinite(yi))
+        {
+            ++nNonFinite;
+            continue;
+        }
+        xMin = std::min(xMin, xi);
+        xMax = std::max(xMax, xi);
+        yMin = std::min(yMin, yi);
+        yMax = std::max(yMax, yi);
+        hMax = std::max(hMax, h[i]);
+    }
+
+    nParticles_ = 0;
+    if (nNonFinite > 0)
+    {
+        reportNonFinite(particles);
+    }
+    if (n == 0)
+    {
+        xMin = xMax = yMin = yMax = 0;
+    }
+
+    cellSize_ = cellSize*(1 + cellSizeMargin);
+    invCellSize_ = 1/cellSize_;
+
+    // Cell counts in floating point first: a far particle must not
+    // overflow the integer count. An index is floor((x - x0)/cellSize), so
+    // the particle at the upper bound is in the last cell.
+    const scalar nxReal = std::floor((xMax - xMin)*invCellSize_) + 1;
+    const scalar nyReal = std::floor((yMax - yMin)*invCellSize_) + 1;
+    const scalar maxCells =
+        scalar(maxCellsPerParticle_)*n + scalar(extraCells_);
+    if (!(nxReal*nyReal <= maxCells))
+    {
+        reportFarParticle(particles, nxReal*nyReal, maxCells);
+    }
+
+    x0_ = xMin;
+    y0_ = yMin;
+    nx_ = label(nxReal);
+    ny_ = label(nyReal);
+    hMax_ = hMax;
+    const label nCells = nx_*ny_;
+
+    resizeWithSlack(cellStart_, nCells + 1);
+    resizeWithSlack(cellParticles_, n);
+    resizeWithSlack(particleCell_, n);
+
+    // Cell of every particle
+    label* __restrict__ cell = particleCell_.data();
+    const scalar x0 = x0_, y0 = y0_, inv = invCellSize_;
+    const label nx = nx_, ny = ny_;
+    #pragma omp parallel for schedule(static) if(n > minParallelLoop)
+    for (label i = 0; i < n; ++i)
+    {
+        const label ix = std::min(label((x[2*i] - x0)*inv), nx - 1);
+        const label iy = std::min(label((x[2*i + 1] - y0)*inv), ny - 1);
+        cell[i] = iy*nx + ix;
+    }
+
+    // Counting sort (stable, serial: O(N) increments, a few per cent of a
+    // neighbour search). The counts go to start[c + 1]; after the prefix
+    // sum start[c] is the first slot of cell c and serves as the fill
+    // cursor, which leaves it at the first slot of c + 1: one shift back
+    // restores the offsets without a second array.
+    label* __restrict__ start = cellStart_.data();
+    label* __restrict__ sorted = cellParticles_.data();
+    std::fill(cellStart_.begin(), cellStart_.end(), 0);
+    for (label i = 0; i < n; ++i)
+    {
+        ++start[cell[i] + 1];
+    }
+    for (label c = 0; c < nCells; ++c)
+    {
+        start[c + 1] += start[c];
+    }
+    for (label i = 0; i < n; ++i)
+    {
+        sorted[start[cell[i]]++] = i;
+    }
+    for (label c = nCells; c > 0; --c)
+    {
+        start[c] = start[c - 1];
+    }
+    start[0] = 0;
+
+    nParticles_ = n;
+}
+
+
+void Foam::cellLinkedList::particlesReordered()
+{
+    const label nCells = nx_*ny_;
+    label* __restrict__ sorted = cellParticles_.data();
+    label* __restrict__ cell = particleCell_.data();
+    const label* __restrict__ start = cellStart_.data();
+    #pragma omp parallel for schedule(static) if(nCells > minParallelLoop)
+    for (label c = 0; c < nCells; ++c)
+    {
+        for (label k = start[c]; k < start[c + 1]; ++k)
+        {
+            sorted[k] = k;
+            cell[k] = c;
+        }
+    }
+}
+
+
+void Foam::cellLinkedList::buildNeighbourLists
+(
+    const particleSet& particles,
+    const scalar kappa,
+    std::vector<label>& start,
+    std::vector<label>& neighbours
+) const
+{
+    checkSupport(particles, kappa);
+
+    const label n = nParticles_;
+    resizeWithSlack(start, n + 1);
+    label* __restrict__ rowStart = start.data();
+    rowStart[0] = 0;
+
+    // Performance critical: the neighbour search of every particle, twice.
+    // Pass 1 counts the neighbours of i into start[i + 1].
+    #pragma omp parallel for schedule(static) if(n > minParallelLoop)
+    for (label i = 0; i < n; ++i)
+    {
+        label count = 0;
+        forEachNeighbour
+        (
+            particles, i, kappa,
+            [&count](label, scalar, scalar, scalar) { ++count; }
+        );
+        rowStart[i + 1] = count;
+    }
+
+    for (label i = 0; i < n; ++i)
+    {
+        rowStart[i + 1] += rowStart[i];
+    }
+
+    // Pass 2 writes each row at its offset: the rows and their order do not
+    // depend on which thread computed them
+    resizeWithSlack(neighbours, std::size_t(rowStart[n]));
+    label* __restrict__ nbr = neighbours.data();
+    #pragma omp parallel for schedule(static) if(n > minParallelLoop)
+    for (label i = 0; i < n; ++i)
+    {
+        label k = rowStart[i];
+        forEachNeighbour
+        (
+            particles, i, kappa,
+            [nbr, &k](label j, scalar, scalar, scalar) { nbr[k++] = j; }
+        );
+    }
+}
+
+
+std::size_t Foam::cellLinkedList::memoryBytes() const
+{
+    return
+        capacityBytes(cellStart_) + capacityBytes(cellParticles_)
+      + capacityBytes(particleCell_);
+}
+
+
+// ************************************************************************* //
