@@ -12,21 +12,3 @@ Foam::cubicSpline::cubicSpline(const dictionary& schemesDict)
 :
     sphKernel(kernelKind::cubicSpline)
 {}
-
-
-Foam::scalar Foam::cubicSpline::W(const scalar r, const scalar h) const
-{
-    return sphKernels::cubicSpline::W(r, h);
-}
-
-
-Foam::scalar Foam::cubicSpline::F(const scalar r, const scalar h) const
-{
-    return sphKernels::cubicSpline::F(r, h);
-}
-
-
-Foam::scalar Foam::cubicSpline::support() const
-{
-    return sphKernels::cubicSpline::support;
-}

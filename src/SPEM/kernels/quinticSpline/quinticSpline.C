@@ -12,21 +12,3 @@ Foam::quinticSpline::quinticSpline(const dictionary& schemesDict)
 :
     sphKernel(kernelKind::quinticSpline)
 {}
-
-
-Foam::scalar Foam::quinticSpline::W(const scalar r, const scalar h) const
-{
-    return sphKernels::quinticSpline::W(r, h);
-}
-
-
-Foam::scalar Foam::quinticSpline::F(const scalar r, const scalar h) const
-{
-    return sphKernels::quinticSpline::F(r, h);
-}
-
-
-Foam::scalar Foam::quinticSpline::support() const
-{
-    return sphKernels::quinticSpline::support;
-}
