@@ -21,6 +21,8 @@ Description
 #include "Time.H"
 #include "triMesh.H"
 
+#include "testFiles.H"
+
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -82,13 +84,7 @@ bool hasEdge(const Foam::triMesh& mesh, Foam::label a, Foam::label b)
 }
 
 
-std::string readText(const fs::path& file)
-{
-    std::ifstream is(file);
-    std::stringstream ss;
-    ss << is.rdbuf();
-    return ss.str();
-}
+using testFiles::readText;
 
 
 //- Write an OpenFOAM dictionary with the standard FoamFile header

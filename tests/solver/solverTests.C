@@ -37,6 +37,8 @@ Description
 #include "triMesh.H"
 #include "testMeshes.H"
 
+#include "testFiles.H"
+
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -77,13 +79,7 @@ const double gravity = 9.81;          // [m/s2]
 const std::string caseName = "column";
 
 
-std::string readText(const fs::path& file)
-{
-    std::ifstream is(file);
-    std::stringstream ss;
-    ss << is.rdbuf();
-    return ss.str();
-}
+using testFiles::readText;
 
 
 bool contains(const std::string& text, const std::string& part)

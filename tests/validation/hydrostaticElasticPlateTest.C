@@ -8,6 +8,8 @@ Description
 
 \*---------------------------------------------------------------------------*/
 
+#include "testFiles.H"
+
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -26,13 +28,7 @@ namespace fs = std::filesystem;
 namespace
 {
 
-std::string readText(const fs::path& file)
-{
-    std::ifstream is(file);
-    std::stringstream ss;
-    ss << is.rdbuf();
-    return ss.str();
-}
+using testFiles::readText;
 
 void replaceEntry(const fs::path& file, const std::string& key, const std::string& value)
 {
