@@ -630,11 +630,14 @@ TEST_F(Solver, regionNotInMeshStops)
 }
 
 
-TEST_F(Solver, particleMethodIsRejectedNotRunAsElements)
+TEST_F(Solver, multiResolutionMethodIsRejectedNotRunAsElements)
 {
-    schemes_ = "method          SPH;\n";
+    schemes_ = "method          multiResolutionSPEM;\n";
     const std::string text = runExpectingFatalError();
-    expectInLog(text, {"FATAL IO ERROR", "SPH", "system/spemSchemes"});
+    expectInLog
+    (
+        text, {"FATAL IO ERROR", "multiResolutionSPEM", "system/spemSchemes"}
+    );
     EXPECT_FALSE(contains(text, "Starting time loop")) << text;
 }
 

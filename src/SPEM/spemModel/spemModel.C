@@ -5,9 +5,15 @@
 #include "OSspecific.H"
 #include "vtkSeriesWriter.H"
 #include "checkKeywords.H"
+#include "elementToParticle.H"
+#include "wallParticles.H"
+#include "weaklyCompressibleNewtonian.H"
+#include "scalarIOField.H"
 
+#include <algorithm>
 #include <cmath>
 #include <stdexcept>
+#include <utility>
 
 namespace Foam
 {
@@ -52,7 +58,13 @@ Foam::PtrList<Foam::spemMaterial> Foam::spemModel::readMaterials() const
                 << "': every mesh region needs a material"
                 << exit(FatalIOError);
         }
-        materials.set(r, spemMaterial::New(name, regionsDict.subDict(name)));
+        const dictionary& d = regionsDict.subDict(name);
+        if (d.getOrDefault<word>("model", word::null) == "void")
+        {
+            checkKeywords(d, {"model"});
+            continue;
+        }
+        materials.set(r, spemMaterial::New(name, d));
     }
     return materials;
 }
@@ -87,6 +99,8 @@ void Foam::spemModel::readBoundaries()
         patchTypes_[p] = patchTypeNames.get("type", bcDict.subDict(name));
     }
 
+    if (!elements_) return;
+
     // Two slip walls meeting at more than this angle make a corner
     std::vector<elementModel::constraint> c;
     std::vector<scalar> normal;
@@ -110,6 +124,8 @@ void Foam::spemModel::readGravity()
         IOobject::NO_WRITE,
         false
     );
+    g_[0] = 0;
+    g_[1] = 0;
     if (!gIO.typeHeaderOk<uniformDimensionedVectorField>(true))
     {
         Info<< "No constant/g: no gravity" << nl;
@@ -123,12 +139,16 @@ void Foam::spemModel::readGravity()
             << " plane of the 2D mesh, found " << g.value()
             << exit(FatalError);
     }
-    elements_->setGravity(g.value().x(), g.value().y());
+    g_[0] = g.value().x();
+    g_[1] = g.value().y();
+    if (elements_) elements_->setGravity(g_[0], g_[1]);
 }
 
 
 void Foam::spemModel::readState()
 {
+    if (!elements_) return;
+
     IOobject xIO
     (
         "points", runTime_.timeName(), "spem", runTime_,
@@ -162,6 +182,10 @@ void Foam::spemModel::readState()
 
 void Foam::spemModel::writeState() const
 {
+    mkDir(runTime_.timePath()/"spem");
+    if (particles_) writeParticleState();
+    if (!elements_) return;
+
     const std::vector<scalar>& x = elements_->positions();
     const std::vector<scalar>& v = elements_->velocities();
     const label n = elements_->nNodes();
@@ -178,7 +202,6 @@ void Foam::spemModel::writeState() const
         xf[i] = vector(x[2*i], x[2*i + 1], 0);
         vf[i] = vector(v[2*i], v[2*i + 1], 0);
     }
-    mkDir(runTime_.timePath()/"spem");
     xf.write();
     vf.write();
 }
@@ -186,42 +209,114 @@ void Foam::spemModel::writeState() const
 
 void Foam::spemModel::writeVTK()
 {
-    const elementModel& em = *elements_;
-    const label nNodes = em.nNodes(), nEl = em.nElements();
-    const std::vector<scalar>& x = em.positions();
-    const std::vector<scalar>& X = em.referencePositions();
+    std::vector<vtkOutput::triangleBlock> triangleBlocks;
+    std::vector<vtkOutput::particleBlock> particleBlocks;
 
-    std::vector<scalar> displacement(2*nNodes);
-    for (label i = 0; i < 2*nNodes; ++i) displacement[i] = x[i] - X[i];
-    std::vector<scalar> regionId(nEl);
-    for (label r = 0; r < em.regions().size(); ++r)
+    // Element half. The arrays must live until the write below.
+    std::vector<scalar> displacement, regionId;
+    elementModel::elementFields f;
+    if (elements_)
     {
-        for (label e = em.regions()[r].elemBegin; e < em.regions()[r].elemEnd; ++e)
+        const elementModel& em = *elements_;
+        const label nNodes = em.nNodes(), nEl = em.nElements();
+        const std::vector<scalar>& x = em.positions();
+        const std::vector<scalar>& X = em.referencePositions();
+
+        displacement.resize(2*nNodes);
+        for (label i = 0; i < 2*nNodes; ++i) displacement[i] = x[i] - X[i];
+        regionId.resize(nEl);
+        for (label r = 0; r < em.regions().size(); ++r)
         {
-            regionId[e] = r;
+            const elementModel::region& reg = em.regions()[r];
+            for (label e = reg.elemBegin; e < reg.elemEnd; ++e)
+            {
+                regionId[e] = r;
+            }
         }
-    }
-    const elementModel::elementFields f = em.fields();
+        f = em.fields();
 
-    vtkOutput::triangleBlock elements;
-    elements.name = "elements";
-    elements.nPoints = nNodes;
-    elements.points = x.data();
-    elements.nTriangles = nEl;
-    elements.triangles = em.elementNodes().data();
-    elements.pointData =
+        vtkOutput::triangleBlock elements;
+        elements.name = "elements";
+        elements.nPoints = nNodes;
+        elements.points = x.data();
+        elements.nTriangles = nEl;
+        elements.triangles = em.elementNodes().data();
+        elements.pointData =
+        {
+            {"velocity", 2, em.velocities().data()},
+            {"displacement", 2, displacement.data()}
+        };
+        elements.cellData =
+        {
+            {"pressure", 1, f.pressure.data()},
+            {"density", 1, f.density.data()},
+            {"stress", 6, f.stress.data()},
+            {"vonMisesStress", 1, f.vonMises.data()},
+            {"region", 1, regionId.data()}
+        };
+        triangleBlocks.push_back(std::move(elements));
+    }
+
+    // Particle half: fluid particles and wall particles as two blocks
+    // (gathered: the set interleaves them in cell order)
+    struct gathered
     {
-        {"velocity", 2, em.velocities().data()},
-        {"displacement", 2, displacement.data()}
-    };
-    elements.cellData =
+        std::vector<scalar> x, v, p, rho, h, surface, level, id;
+    } fluid, wall;
+    if (particles_)
     {
-        {"pressure", 1, f.pressure.data()},
-        {"density", 1, f.density.data()},
-        {"stress", 6, f.stress.data()},
-        {"vonMisesStress", 1, f.vonMises.data()},
-        {"region", 1, regionId.data()}
-    };
+        const sphFluid& sph = *particles_;
+        const particleSet& ps = sph.particles();
+        for (label i = 0; i < ps.size(); ++i)
+        {
+            gathered& g =
+                ps.kinds()[i] == particleSet::kind::fluid ? fluid : wall;
+            g.x.push_back(ps.positions()[2*i]);
+            g.x.push_back(ps.positions()[2*i + 1]);
+            g.v.push_back(ps.velocities()[2*i]);
+            g.v.push_back(ps.velocities()[2*i + 1]);
+            g.p.push_back(ps.pressure()[i]);
+            g.rho.push_back(ps.density()[i]);
+            g.h.push_back(ps.smoothingLength()[i]);
+            g.surface.push_back
+            (
+                ps.kinds()[i] == particleSet::kind::fluid
+             && sph.freeSurface(i)
+            );
+            g.level.push_back(ps.level()[i]);
+            g.id.push_back(ps.id()[i]);
+        }
+
+        vtkOutput::particleBlock fb;
+        fb.name = "particles";
+        fb.nParticles = fluid.p.size();
+        fb.positions = fluid.x.data();
+        fb.pointData =
+        {
+            {"velocity", 2, fluid.v.data()},
+            {"pressure", 1, fluid.p.data()},
+            {"density", 1, fluid.rho.data()},
+            {"freeSurface", 1, fluid.surface.data()},
+            {"smoothingLength", 1, fluid.h.data()},
+            {"level", 1, fluid.level.data()},
+            {"id", 1, fluid.id.data()}
+        };
+        particleBlocks.push_back(std::move(fb));
+
+        // Walls: their pressure is the extrapolated one of the boundary
+        // condition, useful to see the load on a wall
+        vtkOutput::particleBlock wb;
+        wb.name = "wallParticles";
+        wb.nParticles = wall.p.size();
+        wb.positions = wall.x.data();
+        wb.pointData =
+        {
+            {"pressure", 1, wall.p.data()},
+            {"density", 1, wall.rho.data()},
+            {"smoothingLength", 1, wall.h.data()}
+        };
+        particleBlocks.push_back(std::move(wb));
+    }
 
     try
     {
@@ -239,7 +334,7 @@ void Foam::spemModel::writeVTK()
                 )
             );
         }
-        vtk_->write(runTime_.value(), {elements}, {});
+        vtk_->write(runTime_.value(), triangleBlocks, particleBlocks);
     }
     catch (const std::exception& err)
     {
@@ -247,6 +342,221 @@ void Foam::spemModel::writeVTK()
             << "Writing the VTK series failed: " << err.what()
             << exit(FatalError);
     }
+}
+
+
+void Foam::spemModel::writeParticleState() const
+{
+    const particleSet& ps = particles_->particles();
+    const label nFluid = particles_->nFluid();
+    IOobject xIO
+    (
+        "particlePositions", runTime_.timeName(), "spem", runTime_,
+        IOobject::NO_READ, IOobject::NO_WRITE, false
+    );
+    vectorIOField xf(xIO, nFluid);
+    vectorIOField vf(IOobject(xIO, "particleU"), nFluid);
+    scalarIOField rho(IOobject(xIO, "particleRho"), nFluid);
+    scalarIOField m(IOobject(xIO, "particleMass"), nFluid);
+    scalarIOField h(IOobject(xIO, "particleH"), nFluid);
+
+    // In the order of the particle ids, so that a restart reproduces the
+    // same particle set
+    std::vector<label> order;
+    for (label i = 0; i < ps.size(); ++i)
+    {
+        if (ps.kinds()[i] == particleSet::kind::fluid) order.push_back(i);
+    }
+    std::sort
+    (
+        order.begin(), order.end(),
+        [&](const label a, const label b) { return ps.id()[a] < ps.id()[b]; }
+    );
+    forAll(xf, k)
+    {
+        const label i = order[k];
+        xf[k] = vector(ps.positions()[2*i], ps.positions()[2*i + 1], 0);
+        vf[k] = vector(ps.velocities()[2*i], ps.velocities()[2*i + 1], 0);
+        rho[k] = ps.density()[i];
+        m[k] = ps.mass()[i];
+        h[k] = ps.smoothingLength()[i];
+    }
+    xf.write();
+    vf.write();
+    rho.write();
+    m.write();
+    h.write();
+}
+
+
+bool Foam::spemModel::readParticleState(particleSet& particles) const
+{
+    IOobject xIO
+    (
+        "particlePositions", runTime_.timeName(), "spem", runTime_,
+        IOobject::MUST_READ, IOobject::NO_WRITE, false
+    );
+    if (!xIO.typeHeaderOk<vectorIOField>(true)) return false;
+
+    const vectorIOField xf(xIO);
+    const vectorIOField vf(IOobject(xIO, "particleU"));
+    const scalarIOField rho(IOobject(xIO, "particleRho"));
+    const scalarIOField m(IOobject(xIO, "particleMass"));
+    const scalarIOField h(IOobject(xIO, "particleH"));
+    const label n = xf.size();
+    if (vf.size() != n || rho.size() != n || m.size() != n || h.size() != n)
+    {
+        FatalErrorInFunction
+            << "Restart particle state in " << xIO.path() << " is"
+            << " inconsistent: " << n << " positions, " << vf.size()
+            << " velocities, " << rho.size() << " densities, " << m.size()
+            << " masses, " << h.size() << " smoothing lengths"
+            << exit(FatalError);
+    }
+    particles.reserve(n);
+    forAll(xf, i)
+    {
+        particles.append
+        (
+            xf[i].x(), xf[i].y(), vf[i].x(), vf[i].y(), rho[i], 0, m[i], h[i]
+        );
+    }
+    Info<< "Restart: read " << n << " fluid particles from " << xIO.path()
+        << nl << endl;
+    return true;
+}
+
+
+void Foam::spemModel::buildParticles(const PtrList<spemMaterial>& materials)
+{
+    // The fluid regions: one fluid for the particles
+    std::vector<label> fluidElements;
+    const weaklyCompressibleNewtonian* fluid = nullptr;
+    forAll(materials, r)
+    {
+        if (!materials.set(r)) continue;
+        const spemMaterial& mat = materials[r];
+        const auto* f = dynamic_cast<const weaklyCompressibleNewtonian*>(&mat);
+        if (!f)
+        {
+            FatalIOErrorInFunction(*this)
+                << "Region " << mesh_.regionNames()[r] << " (" << mat.type()
+                << "): method SPH couples particles to solid regions, which"
+                << " this version cannot do yet. Use method SPEM for"
+                << " structures, or make the region a fluid or void"
+                << exit(FatalIOError);
+        }
+        if (fluid && (f->rho() != fluid->rho() || f->c() != fluid->c()
+                   || f->kinematicViscosity() != fluid->kinematicViscosity()))
+        {
+            FatalIOErrorInFunction(*this)
+                << "Fluid regions with different rho, c or mu: the particle"
+                << " half models one fluid" << exit(FatalIOError);
+        }
+        fluid = f;
+        for (label t = 0; t < mesh_.nTriangles(); ++t)
+        {
+            if (mesh_.triangleRegion()[t] == r) fluidElements.push_back(t);
+        }
+    }
+    if (!fluid)
+    {
+        FatalIOErrorInFunction(*this)
+            << "method SPH needs at least one fluid region" << exit(FatalIOError);
+    }
+
+    // Eqs. (17-18): every fluid element becomes a particle at t = 0
+    const std::vector<scalar>& x = mesh_.points();
+    const std::vector<label>& tri = mesh_.triangles();
+    std::vector<scalar> elementMass(mesh_.nTriangles(), 0);
+    scalar areaSum = 0;
+    for (const label t : fluidElements)
+    {
+        const scalar* a = &x[2*tri[3*t]];
+        const scalar* b = &x[2*tri[3*t + 1]];
+        const scalar* c = &x[2*tri[3*t + 2]];
+        const scalar area =
+            0.5*mag((b[0] - a[0])*(c[1] - a[1]) - (b[1] - a[1])*(c[0] - a[0]));
+        elementMass[t] = fluid->rho()*area;
+        areaSum += area;
+    }
+    const sphFluid::controls ctrl = sphFluid::controls::read(schemes_);
+    particleSet ps;
+    if (readParticleState(ps))
+    {
+        if (ps.size() != label(fluidElements.size()))
+        {
+            FatalErrorInFunction
+                << "The restart state of time " << runTime_.timeName()
+                << " has " << ps.size() << " fluid particles; the mesh has "
+                << fluidElements.size() << " fluid elements, each one"
+                << " particle with method SPH. Is the state from another"
+                << " mesh? (Allclean removes it.)" << exit(FatalError);
+        }
+    }
+    else
+    {
+        const std::vector<scalar> v(x.size(), 0);
+        appendParticlesFromElements
+        (
+            x, v, tri, elementMass, fluidElements, ctrl.smoothingLengthRatio, ps
+        );
+    }
+    const label nFluid = ps.size();
+
+    // Walls: dummy particles at the mean spacing of the fluid particles,
+    // enough layers to fill the kernel support
+    const scalar spacing = std::sqrt(areaSum/fluidElements.size());
+    const scalar h = ctrl.smoothingLengthRatio*spacing;
+    const scalar kappa = sphKernel::New(schemes_)->support();
+    const label layers =
+        ctrl.wallLayers > 0
+      ? ctrl.wallLayers
+      : label(std::ceil(kappa*ctrl.smoothingLengthRatio - 1e-9));
+    const label nWall =
+        appendWallParticles
+        (
+            mesh_, patchTypes_, spacing, layers, fluid->rho(), h, ps
+        );
+
+    // Lost particles: beyond the mesh's bounding box enlarged by its size
+    scalar boxMin[2] = {GREAT, GREAT}, boxMax[2] = {-GREAT, -GREAT};
+    for (label i = 0; i < mesh_.nPoints(); ++i)
+    {
+        for (int k = 0; k < 2; ++k)
+        {
+            boxMin[k] = min(boxMin[k], x[2*i + k]);
+            boxMax[k] = max(boxMax[k], x[2*i + k]);
+        }
+    }
+    for (int k = 0; k < 2; ++k)
+    {
+        const scalar size = boxMax[k] - boxMin[k];
+        boxMin[k] -= size;
+        boxMax[k] += size;
+    }
+
+    particles_.reset
+    (
+        new sphFluid
+        (
+            schemes_, std::move(ps), fluid->rho(), fluid->c(),
+            fluid->rho()*fluid->kinematicViscosity(), g_[0], g_[1],
+            boxMin, boxMax
+        )
+    );
+
+    const sphFluid::controls& c = particles_->schemeControls();
+    Info<< "Particles (method SPH): " << nFluid << " fluid particles from "
+        << fluidElements.size() << " fluid elements, " << nWall
+        << " wall particles in " << layers << " layers" << nl
+        << "    spacing " << spacing << " m, h " << h << " m, kernel "
+        << particles_->kernel().type() << nl
+        << "    gradientCorrection "
+        << sphFluid::gradientCorrectionTypeNames[c.gradientCorrection]
+        << ", densityDiffusion " << c.densityDiffusion
+        << ", shifting " << c.shifting
+        << ", freeSurfaceThreshold " << c.freeSurfaceThreshold << nl;
 }
 
 
@@ -286,18 +596,18 @@ Foam::spemModel::spemModel(const Time& runTime)
     (
         *this, {"regions", "boundaries", "damping", "slipCornerAngle"}
     );
-    checkKeywords(schemes_, {"method"});
-    if (method_ != methodType::SPEM)
+    checkKeywords(schemes_, {"method", "kernel", "sph"});
+    if (method_ == methodType::multiResolutionSPEM)
     {
         FatalIOErrorInFunction(schemes_)
             << "method " << methodTypeNames[method_]
-            << " needs the particle half, which this version does not have"
-            << " yet; use method SPEM" << exit(FatalIOError);
+            << " is not available in this version; use SPEM or SPH"
+            << exit(FatalIOError);
     }
 
-    elements_.reset(new elementModel(mesh_, readMaterials()));
-    readBoundaries();
-    readGravity();
+    PtrList<spemMaterial> materials = readMaterials();
+    bool hasVoid = false;
+    forAll(materials, r) hasVoid = hasVoid || !materials.set(r);
 
     const dictionary* dampingDict = findDict("damping");
     if (dampingDict) checkKeywords(*dampingDict, {"massProportional"});
@@ -310,20 +620,42 @@ Foam::spemModel::spemModel(const Time& runTime)
         FatalIOErrorInFunction(*dampingDict)
             << "massProportional must not be negative" << exit(FatalIOError);
     }
-    elements_->setMassDamping(alpha);
 
-    readState();
+    if (method_ == methodType::SPEM)
+    {
+        if (hasVoid)
+        {
+            FatalIOErrorInFunction(*this)
+                << "Regions with model void (empty space) need method SPH"
+                << " in this version" << exit(FatalIOError);
+        }
+        elements_.reset(new elementModel(mesh_, std::move(materials)));
+        readBoundaries();
+        readGravity();
+        elements_->setMassDamping(alpha);
+        readState();
+    }
+    else
+    {
+        readBoundaries();
+        readGravity();
+        buildParticles(materials);
+        particles_->setMassDamping(alpha);
+    }
 
     Info<< "Mesh: " << mesh_.nPoints() << " nodes, " << mesh_.nTriangles()
         << " triangles, " << mesh_.nSegments() << " boundary segments" << nl;
-    const elementModel& em = *elements_;
-    for (const elementModel::region& r : em.regions())
+    if (elements_)
     {
-        const label ri = &r - em.regions().cdata();
-        Info<< "    region " << r.name << ": "
-            << em.material(ri).type() << ", "
-            << r.elemEnd - r.elemBegin << " elements, "
-            << r.domainEnd - r.domainBegin << " smoothing domains" << nl;
+        const elementModel& em = *elements_;
+        for (const elementModel::region& r : em.regions())
+        {
+            const label ri = &r - em.regions().cdata();
+            Info<< "    region " << r.name << ": "
+                << em.material(ri).type() << ", "
+                << r.elemEnd - r.elemBegin << " elements, "
+                << r.domainEnd - r.domainBegin << " smoothing domains" << nl;
+        }
     }
     forAll(mesh_.patchNames(), p)
     {
@@ -343,19 +675,63 @@ Foam::spemModel::~spemModel() = default;
 
 // * * * * * * * * * * * * * * * Member Functions  * * * * * * * * * * * * * //
 
-void Foam::spemModel::stopWithLastGoodState()
+const Foam::elementModel& Foam::spemModel::elements() const
 {
-    const std::string why = elements_->failure();
+    if (!elements_)
+    {
+        FatalErrorInFunction
+            << "This case has no elements (method "
+            << methodTypeNames[method_] << ')' << exit(FatalError);
+    }
+    return *elements_;
+}
+
+
+Foam::elementModel& Foam::spemModel::elements()
+{
+    return const_cast<elementModel&>(std::as_const(*this).elements());
+}
+
+
+const Foam::sphFluid& Foam::spemModel::particles() const
+{
+    if (!particles_)
+    {
+        FatalErrorInFunction
+            << "This case has no particles (method "
+            << methodTypeNames[method_] << ')' << exit(FatalError);
+    }
+    return *particles_;
+}
+
+
+Foam::scalar Foam::spemModel::stableDeltaT() const
+{
+    scalar dt = GREAT;
+    if (elements_) dt = min(dt, elements_->stableDeltaT());
+    if (particles_) dt = min(dt, particles_->stableDeltaT());
+    return dt;
+}
+
+
+void Foam::spemModel::stopWithLastGoodState(const std::string failure)
+{
+    // By value: re-evaluating the good state below clears the failure
+    // message of the half that failed
+    const std::string why = failure;
     const scalar tFail = runTime_.value();
 
     // The failed state is the current one; the previous one is good
     Time& runTime = const_cast<Time&>(runTime_);
     if (runTime.timeIndex() > runTime.startTimeIndex())
     {
-        elements_->revert();
+        if (elements_) elements_->revert();
+        if (particles_) particles_->revert();
         runTime.setTime(tFail - runTime.deltaTValue(), runTime.timeIndex() - 1);
-        // Stresses of the good state for the output (it evaluated before)
-        elements_->evaluate();
+        // Stresses and pressures of the good state for the output (it
+        // evaluated before)
+        if (elements_) elements_->evaluate();
+        if (particles_) particles_->evaluate();
     }
     write(true);
     FatalErrorInFunction
@@ -370,13 +746,28 @@ void Foam::spemModel::stopWithLastGoodState()
 
 void Foam::spemModel::evaluate()
 {
-    if (!elements_->evaluate()) stopWithLastGoodState();
+    if (elements_ && !elements_->evaluate())
+    {
+        stopWithLastGoodState(elements_->failure());
+    }
+    if (particles_ && !particles_->evaluate())
+    {
+        stopWithLastGoodState(particles_->failure());
+    }
 }
 
 
 void Foam::spemModel::advance()
 {
-    if (!elements_->advance(runTime_.deltaTValue())) stopWithLastGoodState();
+    const scalar dt = runTime_.deltaTValue();
+    if (elements_ && !elements_->advance(dt))
+    {
+        stopWithLastGoodState(elements_->failure());
+    }
+    if (particles_ && !particles_->advance(dt))
+    {
+        stopWithLastGoodState(particles_->failure());
+    }
 }
 
 
@@ -397,9 +788,15 @@ void Foam::spemModel::write(const bool force)
 
 void Foam::spemModel::report(Ostream& os) const
 {
-    os  << "elements = " << elements_->nElements()
-        << ", nodes = " << elements_->nNodes()
-        << ", particles = 0";
+    os  << "elements = " << (elements_ ? elements_->nElements() : 0)
+        << ", nodes = " << (elements_ ? elements_->nNodes() : 0)
+        << ", particles = " << (particles_ ? particles_->nFluid() : 0);
+    if (particles_)
+    {
+        const scalar* f = particles_->wallForce();
+        os  << ", wall particles = " << particles_->nWall()
+            << ", force on walls = (" << f[0] << ' ' << f[1] << ')';
+    }
 }
 
 

@@ -60,11 +60,32 @@ bool Foam::functionObjects::pressureProbe::read(const dictionary& dict)
 
 bool Foam::functionObjects::pressureProbe::write()
 {
-    const elementModel& em = model().elements();
     if (!writeToFile()) return true;
 
     OFstream& os = file();
     os  << time_.value();
+    if (model().hasParticles())
+    {
+        // Kernel (Shepard) interpolation from the particles, wall particles
+        // included so that a probe on a wall reads the wall pressure
+        const sphFluid& sph = model().particles();
+        for (size_t i = 0; i < locations_.size()/2; ++i)
+        {
+            scalar p;
+            if (sph.interpolatePressure(locations_[2*i], locations_[2*i + 1], p))
+            {
+                os  << tab << p;
+            }
+            else
+            {
+                os  << tab << "NaN";
+            }
+        }
+        os  << endl;
+        return true;
+    }
+
+    const elementModel& em = model().elements();
     for (size_t i = 0; i < locations_.size()/2; ++i)
     {
         scalar w[3];

@@ -1,0 +1,85 @@
+#include "surgeFront.H"
+#include "Time.H"
+#include "addToRunTimeSelectionTable.H"
+
+namespace Foam
+{
+namespace functionObjects
+{
+    defineTypeNameAndDebug(surgeFront, 0);
+    addToRunTimeSelectionTable(functionObject, surgeFront, dictionary);
+}
+}
+
+
+Foam::functionObjects::surgeFront::surgeFront
+(
+    const word& name,
+    const Time& runTime,
+    const dictionary& dict
+)
+:
+    spemFunctionObject(name, runTime, dict)
+{
+    read(dict);
+    writeColumns({"front", "height"});
+}
+
+
+bool Foam::functionObjects::surgeFront::read(const dictionary& dict)
+{
+    writeFile::read(dict);
+    readPoint(dict, "origin", ox_, oy_);
+    const vector d = dict.getOrDefault<vector>("direction", vector(1, 0, 0));
+    const scalar len = std::hypot(d.x(), d.y());
+    if (!(len > 0))
+    {
+        FatalIOErrorInFunction(dict)
+            << "direction " << d << " has no component in the x-y plane"
+            << exit(FatalIOError);
+    }
+    dx_ = d.x()/len;
+    dy_ = d.y()/len;
+    minDivR_ = dict.getOrDefault<scalar>("minDivR", 0.5);
+    return true;
+}
+
+
+bool Foam::functionObjects::surgeFront::write()
+{
+    const sphFluid& sph = model().particles();
+    if (!writeToFile()) return true;
+
+    // Upward: against gravity
+    const scalar* g = model().gravity();
+    const scalar gMag = std::hypot(g[0], g[1]);
+    const scalar ux = gMag > 0 ? -g[0]/gMag : 0;
+    const scalar uy = gMag > 0 ? -g[1]/gMag : 1;
+
+    const particleSet& ps = sph.particles();
+    scalar front = -GREAT, height = -GREAT;
+    for (label i = 0; i < ps.size(); ++i)
+    {
+        if (ps.kinds()[i] != particleSet::kind::fluid) continue;
+        if (sph.divR()[i] < minDivR_) continue;
+        const scalar rx = ps.positions()[2*i] - ox_;
+        const scalar ry = ps.positions()[2*i + 1] - oy_;
+        const scalar along = rx*dx_ + ry*dy_;
+        front = max(front, along);
+        if (along < ps.smoothingLength()[i])
+        {
+            height = max(height, rx*ux + ry*uy);
+        }
+    }
+
+    OFstream& os = file();
+    os  << time_.value() << tab;
+    if (front > -GREAT) os << front; else os << "NaN";
+    os  << tab;
+    if (height > -GREAT) os << height; else os << "NaN";
+    os  << endl;
+    return true;
+}
+
+
+// ************************************************************************* //

@@ -1,0 +1,659 @@
+#include "sphFluid.H"
+#include "dictionary.H"
+#include "checkKeywords.H"
+#include "spemMaterial.H"
+
+#include <algorithm>
+#include <cmath>
+#include <sstream>
+#include <type_traits>
+
+namespace
+{
+    constexpr Foam::label minParallelLoop = Foam::spemMaterial::minParallelLoop;
+}
+
+const Foam::Enum<Foam::sphFluid::gradientCorrectionType>
+Foam::sphFluid::gradientCorrectionTypeNames
+({
+    { gradientCorrectionType::none, "none" },
+    { gradientCorrectionType::decoupledFPM, "decoupledFPM" },
+    { gradientCorrectionType::FPM, "FPM" },
+});
+
+
+// * * * * * * * * * * * * * * * * * controls  * * * * * * * * * * * * * * * //
+
+Foam::sphFluid::controls
+Foam::sphFluid::controls::read(const dictionary& schemesDict)
+{
+    controls c;
+    const dictionary* d = schemesDict.findDict("sph");
+    if (!d) return c;
+
+    checkKeywords
+    (
+        *d,
+        {
+            "smoothingLengthRatio", "gradientCorrection", "densityDiffusion",
+            "shifting", "freeSurfaceThreshold", "wallLayers"
+        }
+    );
+    c.smoothingLengthRatio =
+        d->getOrDefault<scalar>("smoothingLengthRatio", c.smoothingLengthRatio);
+    c.gradientCorrection =
+        gradientCorrectionTypeNames.getOrDefault
+        (
+            "gradientCorrection", *d, c.gradientCorrection
+        );
+    c.densityDiffusion =
+        d->getOrDefault<scalar>("densityDiffusion", c.densityDiffusion);
+    c.shifting = d->getOrDefault<scalar>("shifting", c.shifting);
+    c.freeSurfaceThreshold =
+        d->getOrDefault<scalar>("freeSurfaceThreshold", c.freeSurfaceThreshold);
+    c.wallLayers = d->getOrDefault<label>("wallLayers", c.wallLayers);
+
+    auto bad = [&](const char* key, const char* what)
+    {
+        FatalIOErrorInFunction(*d)
+            << "sph/" << key << ' ' << what << exit(FatalIOError);
+    };
+    if (!(c.smoothingLengthRatio >= 0.5 && c.smoothingLengthRatio <= 3))
+    {
+        bad("smoothingLengthRatio", "must lie in [0.5, 3] (typically 1.2-1.5)");
+    }
+    if (!(c.densityDiffusion >= 0 && c.densityDiffusion <= 1))
+    {
+        bad("densityDiffusion", "must lie in [0, 1] (typically 0.1)");
+    }
+    if (!(c.shifting >= 0 && c.shifting <= 10))
+    {
+        bad("shifting", "must lie in [0, 10] (typically 2)");
+    }
+    if (!(c.freeSurfaceThreshold >= 0 && c.freeSurfaceThreshold <= 2))
+    {
+        bad("freeSurfaceThreshold", "must lie in [0, 2] (div r is 2 in the bulk)");
+    }
+    if (c.wallLayers < 0 || c.wallLayers > 10)
+    {
+        bad("wallLayers", "must lie in [0, 10] (0: enough for the support)");
+    }
+    return c;
+}
+
+
+// * * * * * * * * * * * * * * * * Constructors  * * * * * * * * * * * * * * //
+
+Foam::sphFluid::sphFluid
+(
+    const dictionary& schemesDict,
+    particleSet&& particles,
+    const scalar rho0,
+    const scalar c,
+    const scalar mu,
+    const scalar gx,
+    const scalar gy,
+    const scalar boxMin[2],
+    const scalar boxMax[2]
+)
+:
+    controls_(controls::read(schemesDict)),
+    kernel_(sphKernel::New(schemesDict)),
+    rho0_(rho0),
+    c_(c),
+    mu_(mu),
+    gx_(gx),
+    gy_(gy),
+    particles_(std::move(particles)),
+    nFluid_(0),
+    nWall_(0),
+    massDamping_(0),
+    pendingDeltaT_(0),
+    stepsSinceReorder_(reorderInterval),
+    stableDeltaT_(GREAT),
+    wallForce_{0, 0}
+{
+    for (const particleSet::kind k : particles_.kinds())
+    {
+        if (k == particleSet::kind::fluid) ++nFluid_;
+        else if (particleSet::isWall(k)) ++nWall_;
+        else
+        {
+            FatalErrorInFunction
+                << "Ghost particles belong to the element-particle coupling,"
+                << " not to a pure particle fluid" << exit(FatalError);
+        }
+    }
+    for (int k = 0; k < 2; ++k)
+    {
+        boxMin_[k] = boxMin[k];
+        boxMax_[k] = boxMax[k];
+    }
+
+    const label n = particles_.size();
+    acceleration_.assign(2*n, 0);
+    correction_.assign(3*n, 0);
+    gradC_.assign(2*n, 0);
+    divR_.assign(n, 2);
+    oldPosition_ = particles_.positions();
+    oldVelocity_ = particles_.velocities();
+    oldDensity_ = particles_.density();
+}
+
+
+// * * * * * * * * * * * * * Private Member Functions  * * * * * * * * * * * //
+
+bool Foam::sphFluid::checkParticles()
+{
+    const label n = particles_.size();
+    const scalar* x = particles_.positions().data();
+    const scalar* v = particles_.velocities().data();
+    const scalar* rho = particles_.density().data();
+    label bad = -1;
+
+    #pragma omp parallel for schedule(static) reduction(max: bad) if(n > minParallelLoop)
+    for (label i = 0; i < n; ++i)
+    {
+        const bool ok =
+            std::isfinite(v[2*i]) && std::isfinite(v[2*i + 1])
+         && std::isfinite(rho[i]) && rho[i] > 0
+         && x[2*i] >= boxMin_[0] && x[2*i] <= boxMax_[0]
+         && x[2*i + 1] >= boxMin_[1] && x[2*i + 1] <= boxMax_[1];
+        if (!ok) bad = std::max(bad, i);
+    }
+    if (bad < 0) return true;
+
+    std::ostringstream os;
+    os  << "particle " << particles_.id()[bad] << " at (" << x[2*bad] << ' '
+        << x[2*bad + 1] << ") with velocity (" << v[2*bad] << ' '
+        << v[2*bad + 1] << ") and density " << rho[bad];
+    if (!(rho[bad] > 0) || !std::isfinite(v[2*bad]) || !std::isfinite(v[2*bad+1]))
+    {
+        os  << " is not finite or has a non-positive density";
+    }
+    else
+    {
+        os  << " left the domain [(" << boxMin_[0] << ' ' << boxMin_[1]
+            << "), (" << boxMax_[0] << ' ' << boxMax_[1] << ")]";
+    }
+    failure_ = os.str();
+    return false;
+}
+
+
+void Foam::sphFluid::reorder()
+{
+    const std::vector<label>& order = cells_.sortOrder();
+    particles_.reorder(order);
+    particles_.reorderField(order, 2, oldPosition_);
+    particles_.reorderField(order, 2, oldVelocity_);
+    particles_.reorderField(order, 1, oldDensity_);
+    // acceleration_, correction_, gradC_ and divR_ are recomputed by the
+    // passes that follow, except acceleration_ of walls (zero) and what
+    // advance() reads: gradC_ and divR_ are set before it again
+    cells_.particlesReordered();
+}
+
+
+template<class Kernel>
+void Foam::sphFluid::densityPass(const Kernel&)
+{
+    const label n = particles_.size();
+    const scalar kappa = Kernel::support;
+    const scalar* __restrict__ v = particles_.velocities().data();
+    const scalar* __restrict__ m = particles_.mass().data();
+    const scalar* __restrict__ h = particles_.smoothingLength().data();
+    const particleSet::kind* __restrict__ kind = particles_.kinds().data();
+    scalar* __restrict__ rho = particles_.density().data();
+    scalar* __restrict__ p = particles_.pressure().data();
+    scalar* __restrict__ C = correction_.data();
+    scalar* __restrict__ gradC = gradC_.data();
+    scalar* __restrict__ divR = divR_.data();
+    const scalar* __restrict__ rhoOld = oldDensity_.data();
+
+    const scalar dt = pendingDeltaT_;
+    const scalar delta = controls_.densityDiffusion;
+    const scalar threshold = controls_.freeSurfaceThreshold;
+    const gradientCorrectionType correction = controls_.gradientCorrection;
+    const scalar c = c_, c2 = c_*c_, rho0 = rho0_;
+    // Hydrostatic density difference per unit distance, g rho0/c^2
+    const scalar hx = rho0*gx_/c2, hy = rho0*gy_/c2;
+
+    // The density of step n+1 needs the densities of step n of the
+    // neighbours (diffusion): read rhoOld, write rho. At t = 0 and after
+    // revert() they are the same.
+    // Performance critical: every fluid particle, every step.
+    #pragma omp parallel for schedule(static) if(n > minParallelLoop)
+    for (label i = 0; i < n; ++i)
+    {
+        if (kind[i] != particleSet::kind::fluid) continue;
+
+        const scalar vxi = v[2*i], vyi = v[2*i + 1], rhoi = rhoOld[i];
+        scalar Mxx = 0, Mxy = 0, Myy = 0;
+        scalar Sxx = 0, Sxy = 0, Syx = 0, Syy = 0;
+        scalar gCx = 0, gCy = 0, div = 0, diffusion = 0;
+
+        cells_.forEachNeighbour
+        (
+            particles_, i, kappa,
+            [&](const label j, const scalar dx, const scalar dy, const scalar r)
+            {
+                const scalar hij = 0.5*(h[i] + h[j]);
+                const scalar F = Kernel::F(r, hij);
+                // grad_i W_ij = (x_i - x_j) F
+                const scalar gx = dx*F, gy = dy*F;
+                const scalar Vj = m[j]/rhoOld[j];
+
+                // Moments sum (x_j - x_i) (x) grad_i W V_j
+                Mxx -= dx*gx*Vj;
+                Mxy -= dx*gy*Vj;
+                Myy -= dy*gy*Vj;
+                gCx += gx*Vj;
+                gCy += gy*Vj;
+                div -= (dx*gx + dy*gy)*Vj;
+
+                // Continuity: m_j v_ij (x) grad_i W. A wall particle's
+                // velocity field holds the mirrored velocity of the viscous
+                // term; the wall itself is at rest.
+                const bool fluidj = kind[j] == particleSet::kind::fluid;
+                const scalar wx = m[j]*(vxi - (fluidj ? v[2*j] : 0));
+                const scalar wy = m[j]*(vyi - (fluidj ? v[2*j + 1] : 0));
+                Sxx += wx*gx;
+                Sxy += wx*gy;
+                Syx += wy*gx;
+                Syy += wy*gy;
+
+                // Density diffusion between fluid particles, hydrostatic
+                // part removed; psi_ij . grad_i W = -2 drho F (x_j - x_i =
+                // -(dx, dy))
+                if (fluidj)
+                {
+                    const scalar dRho =
+                        (rhoOld[j] - rhoi) + (hx*dx + hy*dy);
+                    diffusion -= 2*dRho*F*Vj*hij;
+                }
+            }
+        );
+
+        // Correction C_i (symmetric: xx, xy, yy); identity at the surface
+        scalar cxx = 1, cxy = 0, cyy = 1;
+        if (div >= threshold)
+        {
+            if (correction == gradientCorrectionType::decoupledFPM)
+            {
+                cxx = 1/Mxx;
+                cyy = 1/Myy;
+            }
+            else if (correction == gradientCorrectionType::FPM)
+            {
+                const scalar det = Mxx*Myy - Mxy*Mxy;
+                cxx = Myy/det;
+                cxy = -Mxy/det;
+                cyy = Mxx/det;
+            }
+        }
+        C[3*i] = cxx;
+        C[3*i + 1] = cxy;
+        C[3*i + 2] = cyy;
+        gradC[2*i] = gCx;
+        gradC[2*i + 1] = gCy;
+        divR[i] = div;
+
+        // Eq. (16): drho/dt = sum m_j v_ij . C_i grad_i W_ij
+        const scalar drho =
+            cxx*Sxx + cxy*(Sxy + Syx) + cyy*Syy + delta*c*diffusion;
+        scalar rhoNew = rhoi + dt*drho;
+        // Free surface: the fluid cannot pull on the air, so a surface
+        // particle's density (pressure) stays at or above rho0 (0):
+        // splashes and thin jets keep finite volumes and do not clump
+        if (div < threshold) rhoNew = std::max(rhoNew, rho0);
+        rho[i] = rhoNew;
+        // Eq. (7)
+        p[i] = c2*(rhoNew - rho0);
+    }
+}
+
+
+template<class Kernel>
+void Foam::sphFluid::wallPass(const Kernel&)
+{
+    const label n = particles_.size();
+    const scalar kappa = Kernel::support;
+    const scalar* __restrict__ h = particles_.smoothingLength().data();
+    const particleSet::kind* __restrict__ kind = particles_.kinds().data();
+    scalar* __restrict__ v = particles_.velocities().data();
+    scalar* __restrict__ rho = particles_.density().data();
+    scalar* __restrict__ p = particles_.pressure().data();
+    const scalar c2 = c_*c_, rho0 = rho0_, gx = gx_, gy = gy_;
+
+    #pragma omp parallel for schedule(static) if(n > minParallelLoop)
+    for (label w = 0; w < n; ++w)
+    {
+        if (!particleSet::isWall(kind[w])) continue;
+
+        scalar sumW = 0, sumP = 0, sumRhoX = 0, sumRhoY = 0, sumU = 0, sumV = 0;
+        cells_.forEachNeighbour
+        (
+            particles_, w, kappa,
+            [&](const label f, const scalar dx, const scalar dy, const scalar r)
+            {
+                if (kind[f] != particleSet::kind::fluid) return;
+                const scalar W = Kernel::W(r, 0.5*(h[w] + h[f]));
+                sumW += W;
+                sumP += p[f]*W;
+                // rho_f (x_w - x_f) W
+                sumRhoX += rho[f]*dx*W;
+                sumRhoY += rho[f]*dy*W;
+                sumU += v[2*f]*W;
+                sumV += v[2*f + 1]*W;
+            }
+        );
+
+        if (sumW > 0)
+        {
+            // Adami et al. 2012 with a static wall (wall acceleration 0)
+            const scalar pw =
+                std::max((sumP + gx*sumRhoX + gy*sumRhoY)/sumW, scalar(0));
+            p[w] = pw;
+            rho[w] = rho0 + pw/c2;
+            // No-slip: mirrored fluid velocity; free-slip walls do not use
+            // it
+            v[2*w] = -sumU/sumW;
+            v[2*w + 1] = -sumV/sumW;
+        }
+        else
+        {
+            p[w] = 0;
+            rho[w] = rho0;
+            v[2*w] = 0;
+            v[2*w + 1] = 0;
+        }
+    }
+}
+
+
+template<class Kernel>
+void Foam::sphFluid::momentumPass(const Kernel&)
+{
+    const label n = particles_.size();
+    const scalar kappa = Kernel::support;
+    const scalar* __restrict__ v = particles_.velocities().data();
+    const scalar* __restrict__ m = particles_.mass().data();
+    const scalar* __restrict__ h = particles_.smoothingLength().data();
+    const scalar* __restrict__ rho = particles_.density().data();
+    const scalar* __restrict__ p = particles_.pressure().data();
+    const particleSet::kind* __restrict__ kind = particles_.kinds().data();
+    const scalar* __restrict__ C = correction_.data();
+    scalar* __restrict__ a = acceleration_.data();
+
+    const scalar mu = mu_, gx = gx_, gy = gy_, c = c_;
+    const scalar nu = mu_/rho0_;
+    scalar fwx = 0, fwy = 0, dtMin = GREAT;
+
+    // Performance critical: every fluid particle, every step.
+    #pragma omp parallel for schedule(static) reduction(+: fwx, fwy) reduction(min: dtMin) if(n > minParallelLoop)
+    for (label i = 0; i < n; ++i)
+    {
+        if (kind[i] != particleSet::kind::fluid)
+        {
+            a[2*i] = 0;
+            a[2*i + 1] = 0;
+            continue;
+        }
+
+        const scalar vxi = v[2*i], vyi = v[2*i + 1];
+        const scalar rhoi = rho[i], pi = p[i];
+        const scalar pri = pi/(rhoi*rhoi);
+        const scalar cxx = C[3*i], cxy = C[3*i + 1], cyy = C[3*i + 2];
+        scalar ax = 0, ay = 0, wx = 0, wy = 0;
+
+        cells_.forEachNeighbour
+        (
+            particles_, i, kappa,
+            [&](const label j, const scalar dx, const scalar dy, const scalar r)
+            {
+                const scalar hij = 0.5*(h[i] + h[j]);
+                const scalar F = Kernel::F(r, hij);
+                const scalar gxw = dx*F, gyw = dy*F;
+
+                // G_ij = (C_i + C_j)/2 grad_i W_ij: antisymmetric in i, j
+                const bool wall = kind[j] != particleSet::kind::fluid;
+                const scalar* Cj = &C[3*j];
+                const scalar bxx = wall ? 1 : Cj[0];
+                const scalar bxy = wall ? 0 : Cj[1];
+                const scalar byy = wall ? 1 : Cj[2];
+                const scalar Gx = 0.5*((cxx + bxx)*gxw + (cxy + bxy)*gyw);
+                const scalar Gy = 0.5*((cxy + bxy)*gxw + (cyy + byy)*gyw);
+
+                // Eq. (16), pressure
+                const scalar rhoj = rho[j];
+                const scalar pf = -m[j]*(pri + p[j]/(rhoj*rhoj));
+                scalar fx = pf*Gx, fy = pf*Gy;
+
+                // Eq. (16), viscous: no viscous stress at a free-slip wall
+                if (kind[j] != particleSet::kind::slipWall)
+                {
+                    const scalar rs = rhoi + rhoj;
+                    const scalar vf =
+                        4*m[j]*2*mu*(dx*gxw + dy*gyw)
+                       /(rs*rs*(r*r + 0.01*hij*hij));
+                    fx += vf*(vxi - v[2*j]);
+                    fy += vf*(vyi - v[2*j + 1]);
+                }
+
+                ax += fx;
+                ay += fy;
+                if (wall)
+                {
+                    wx += fx;
+                    wy += fy;
+                }
+            }
+        );
+
+        a[2*i] = ax + gx;
+        a[2*i + 1] = ay + gy;
+        // Force of the fluid on the walls: minus the walls' force on it
+        fwx -= m[i]*wx;
+        fwy -= m[i]*wy;
+
+        // Stable step of this particle at Courant number 1
+        const scalar speed = std::sqrt(vxi*vxi + vyi*vyi);
+        const scalar acc = std::sqrt(a[2*i]*a[2*i] + a[2*i + 1]*a[2*i + 1]);
+        scalar dti = acousticFactor*h[i]/(c + speed);
+        if (acc > 0) dti = std::min(dti, forceFactor*std::sqrt(h[i]/acc));
+        if (nu > 0) dti = std::min(dti, viscousFactor*h[i]*h[i]/nu);
+        dtMin = std::min(dtMin, dti);
+    }
+
+    wallForce_[0] = fwx;
+    wallForce_[1] = fwy;
+    stableDeltaT_ = dtMin;
+}
+
+
+// * * * * * * * * * * * * * * * Member Functions  * * * * * * * * * * * * * //
+
+bool Foam::sphFluid::evaluate()
+{
+    failure_.clear();
+    if (!checkParticles()) return false;
+
+    const scalar kappa = kernel_->support();
+    cells_.update(particles_, kappa*particles_.maxSmoothingLength());
+    if (++stepsSinceReorder_ >= reorderInterval)
+    {
+        reorder();
+        stepsSinceReorder_ = 0;
+    }
+
+    kernel_->visit([this](const auto& k) { densityPass(k); });
+    pendingDeltaT_ = 0;
+    kernel_->visit([this](const auto& k) { wallPass(k); });
+    kernel_->visit([this](const auto& k) { momentumPass(k); });
+
+    // A density that went non-positive or non-finite: the step failed
+    const label n = particles_.size();
+    const scalar* rho = particles_.density().data();
+    const scalar* a = acceleration_.data();
+    label bad = -1;
+    #pragma omp parallel for schedule(static) reduction(max: bad) if(n > minParallelLoop)
+    for (label i = 0; i < n; ++i)
+    {
+        if (!(rho[i] > 0) || !std::isfinite(a[2*i]) || !std::isfinite(a[2*i + 1]))
+        {
+            bad = std::max(bad, i);
+        }
+    }
+    if (bad >= 0)
+    {
+        std::ostringstream os;
+        os  << "particle " << particles_.id()[bad] << " at ("
+            << particles_.positions()[2*bad] << ' '
+            << particles_.positions()[2*bad + 1] << ") has density "
+            << rho[bad] << " and acceleration (" << a[2*bad] << ' '
+            << a[2*bad + 1] << ')';
+        failure_ = os.str();
+        return false;
+    }
+    return true;
+}
+
+
+bool Foam::sphFluid::advance(const scalar dt)
+{
+    const label n = particles_.size();
+    oldPosition_ = particles_.positions();
+    oldVelocity_ = particles_.velocities();
+    oldDensity_ = particles_.density();
+
+    scalar* __restrict__ x = particles_.positions().data();
+    scalar* __restrict__ v = particles_.velocities().data();
+    const scalar* __restrict__ a = acceleration_.data();
+    const scalar* __restrict__ h = particles_.smoothingLength().data();
+    const scalar* __restrict__ gradC = gradC_.data();
+    const scalar* __restrict__ divR = divR_.data();
+    const particleSet::kind* __restrict__ kind = particles_.kinds().data();
+    const scalar A = controls_.shifting;
+    const scalar threshold = controls_.freeSurfaceThreshold;
+    const scalar damp = 1/(1 + massDamping_*dt);
+
+    #pragma omp parallel for schedule(static) if(n > minParallelLoop)
+    for (label i = 0; i < n; ++i)
+    {
+        if (kind[i] != particleSet::kind::fluid) continue;
+
+        // Semi-implicit mass-proportional damping, as the element half
+        const scalar vx = (v[2*i] + dt*a[2*i])*damp;
+        const scalar vy = (v[2*i + 1] + dt*a[2*i + 1])*damp;
+        v[2*i] = vx;
+        v[2*i + 1] = vy;
+
+        // Particle shifting, tangential only at the free surface
+        const scalar D = A*h[i]*std::sqrt(vx*vx + vy*vy)*dt;
+        scalar sx = -D*gradC[2*i], sy = -D*gradC[2*i + 1];
+        if (divR[i] < threshold)
+        {
+            const scalar g2 = gradC[2*i]*gradC[2*i] + gradC[2*i+1]*gradC[2*i+1];
+            if (g2 > 0)
+            {
+                const scalar sn = (sx*gradC[2*i] + sy*gradC[2*i + 1])/g2;
+                sx -= sn*gradC[2*i];
+                sy -= sn*gradC[2*i + 1];
+            }
+        }
+        x[2*i] += dt*vx + sx;
+        x[2*i + 1] += dt*vy + sy;
+    }
+    pendingDeltaT_ = dt;
+    return true;
+}
+
+
+void Foam::sphFluid::revert()
+{
+    particles_.positions() = oldPosition_;
+    particles_.velocities() = oldVelocity_;
+    particles_.density() = oldDensity_;
+    pendingDeltaT_ = 0;
+}
+
+
+void Foam::sphFluid::momentum(scalar& px, scalar& py) const
+{
+    px = 0;
+    py = 0;
+    const label n = particles_.size();
+    for (label i = 0; i < n; ++i)
+    {
+        if (particles_.kinds()[i] != particleSet::kind::fluid) continue;
+        px += particles_.mass()[i]*particles_.velocities()[2*i];
+        py += particles_.mass()[i]*particles_.velocities()[2*i + 1];
+    }
+}
+
+
+Foam::scalar Foam::sphFluid::kineticEnergy() const
+{
+    scalar e = 0;
+    const label n = particles_.size();
+    for (label i = 0; i < n; ++i)
+    {
+        if (particles_.kinds()[i] != particleSet::kind::fluid) continue;
+        const scalar* v = &particles_.velocities()[2*i];
+        e += 0.5*particles_.mass()[i]*(v[0]*v[0] + v[1]*v[1]);
+    }
+    return e;
+}
+
+
+bool Foam::sphFluid::interpolatePressure
+(
+    const scalar x,
+    const scalar y,
+    scalar& p
+) const
+{
+    const particleSet& ps = particles_;
+    return kernel_->visit
+    (
+        [&](const auto& k)
+        {
+            using Kernel = std::decay_t<decltype(k)>;
+            scalar sumW = 0, sumP = 0;
+            cells_.forEachParticleNear
+            (
+                ps, x, y, Kernel::support,
+                [&](const label j, const scalar, const scalar, const scalar r)
+                {
+                    if (ps.kinds()[j] == particleSet::kind::ghost) return;
+                    const scalar WV =
+                        Kernel::W(r, ps.smoothingLength()[j])
+                       *ps.mass()[j]/ps.density()[j];
+                    sumW += WV;
+                    sumP += ps.pressure()[j]*WV;
+                }
+            );
+            if (!(sumW > 0)) return false;
+            p = sumP/sumW;
+            return true;
+        }
+    );
+}
+
+
+std::size_t Foam::sphFluid::memoryBytes() const
+{
+    auto bytes = [](const std::vector<scalar>& f)
+    {
+        return f.capacity()*sizeof(scalar);
+    };
+    return
+        particles_.memoryBytes() + cells_.memoryBytes()
+      + bytes(acceleration_) + bytes(correction_) + bytes(gradC_)
+      + bytes(divR_) + bytes(oldPosition_) + bytes(oldVelocity_)
+      + bytes(oldDensity_);
+}
+
+
+// ************************************************************************* //
