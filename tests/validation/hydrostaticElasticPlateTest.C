@@ -29,15 +29,7 @@ namespace
 {
 
 using testFiles::readText;
-
-void replaceEntry(const fs::path& file, const std::string& key, const std::string& value)
-{
-    std::string text = readText(file);
-    const std::regex entry("(^|\n)" + key + "[ \t]+[^;\n]*;");
-    ASSERT_TRUE(std::regex_search(text, entry)) << key << " not in " << file;
-    text = std::regex_replace(text, entry, "$1" + key + " " + value + ";");
-    std::ofstream(file) << text;
-}
+using testFiles::replaceEntry;
 
 //- Mean Dy over the last 10 % of the samples of midSpan.dat
 double settledDeflection(const fs::path& caseDir)

@@ -6,7 +6,8 @@ Description
     Explicit solver of the smoothed particle element method (SPEM) for
     fluid-structure interaction with free surfaces: fluids and solids on a
     triangle mesh with the edge-based smoothed FEM, central-difference time
-    integration (paper sect. 2.1).
+    integration (paper sect. 2.1); with method SPH the fluid as WCSPH
+    particles (sect. 2.2).
 
 Usage
     spemFoam [-case dir]
@@ -17,10 +18,13 @@ Usage
         adjustTimeStep  yes: deltaT = maxCo * stable step, bounded by
                         maxDeltaT; no: a deltaT above maxCo times the stable
                         step stops the run (default no)
-        maxCo           Courant number on the fastest wave speed and the
-                        smallest element altitude (default 0.9; the measured
-                        critical value is 1.33-1.64 on regular meshes, see
-                        tests/validation/stabilityTests.C)
+        maxCo           Courant number: elements on the fastest wave speed
+                        and the smallest element altitude, particles on
+                        h/(c + |v|) (see sphFluid) (default 0.9; the
+                        measured critical value is 1.33-1.64 for elements
+                        on regular meshes, 1.5-1.75 for particles, see
+                        tests/validation/stabilityTests.C and
+                        sphValidationTests.C)
         maxDeltaT       upper bound on the adjusted step (default great)
         logInterval     steps between log entries (default 100; every write
                         time is logged too)

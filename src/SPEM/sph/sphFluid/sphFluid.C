@@ -13,7 +13,7 @@ namespace
     constexpr Foam::label minParallelLoop = Foam::spemMaterial::minParallelLoop;
 }
 
-const Foam::Enum<Foam::sphFluid::gradientCorrectionType>
+const Foam::Enum<Foam::gradientCorrectionType>
 Foam::sphFluid::gradientCorrectionTypeNames
 ({
     { gradientCorrectionType::none, "none" },
@@ -276,22 +276,9 @@ void Foam::sphFluid::densityPass(const Kernel&)
         );
 
         // Correction C_i (symmetric: xx, xy, yy); identity at the surface
-        scalar cxx = 1, cxy = 0, cyy = 1;
-        if (div >= threshold)
-        {
-            if (correction == gradientCorrectionType::decoupledFPM)
-            {
-                cxx = 1/Mxx;
-                cyy = 1/Myy;
-            }
-            else if (correction == gradientCorrectionType::FPM)
-            {
-                const scalar det = Mxx*Myy - Mxy*Mxy;
-                cxx = Myy/det;
-                cxy = -Mxy/det;
-                cyy = Mxx/det;
-            }
-        }
+        scalar Ci[3];
+        gradientCorrectionMatrix(correction, div < threshold, Mxx, Mxy, Myy, Ci);
+        const scalar cxx = Ci[0], cxy = Ci[1], cyy = Ci[2];
         C[3*i] = cxx;
         C[3*i + 1] = cxy;
         C[3*i + 2] = cyy;

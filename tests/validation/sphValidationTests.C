@@ -1,0 +1,326 @@
+/*---------------------------------------------------------------------------*\
+Description
+    Validation of the particle half (method SPH) on the tutorials, run as a
+    user runs them (blockMesh, spemMeshConvert, spemFoam) on a copy of the
+    case at a coarse resolution:
+      - hydrostaticTank (nx 20, 800 particles, settled with the tutorial's
+        damping for 2 s): mean particle pressure in horizontal bands within
+        2 % of rho g (H - y) below the top tenth of the column, every
+        particle kept and inside the tank at every written time;
+      - damBreak (nx 20, 1600 particles, up to the front reaching the far
+        wall): the surge front against Martin and Moyce (1952) and
+        Koshizuka and Oka (1996), every particle inside the tank.
+
+\*---------------------------------------------------------------------------*/
+
+#include "testFiles.H"
+
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+#include <string>
+#include <vector>
+
+namespace fs = std::filesystem;
+
+namespace
+{
+
+using testFiles::readFoamList;
+using testFiles::replaceEntry;
+
+//- Copy a tutorial's inputs (system, constant without meshes) to a fresh
+//  folder under the temporary directory
+fs::path copyTutorial(const std::string& name, const std::string& copyName)
+{
+    const fs::path source = fs::path(SPEM_PROJECT_DIR)/"tutorials"/name;
+    const fs::path caseDir = fs::temp_directory_path()/copyName;
+    fs::remove_all(caseDir);
+    fs::create_directories(caseDir);
+    for (const char* dir : {"system", "constant"})
+    {
+        fs::copy(source/dir, caseDir/dir, fs::copy_options::recursive);
+    }
+    fs::remove_all(caseDir/"constant/polyMesh");
+    fs::remove_all(caseDir/"constant/spemMesh");
+    return caseDir;
+}
+
+//- Run blockMesh, spemMeshConvert and spemFoam; false on a failure
+bool runCase(const fs::path& caseDir)
+{
+    const std::string run = "cd '" + caseDir.string() + "' && ";
+    for
+    (
+        const std::string& program :
+        {
+            std::string("blockMesh"), std::string(SPEM_MESH_CONVERT),
+            std::string(SPEM_FOAM)
+        }
+    )
+    {
+        const std::string name = fs::path(program).filename();
+        const int status =
+            std::system((run + program + " > log." + name + " 2>&1").c_str());
+        EXPECT_EQ(status, 0) << name << " failed, see " << caseDir/("log." + name);
+        if (status != 0) return false;
+    }
+    return true;
+}
+
+//- Written time directories (those with a particle state), in time order
+std::vector<fs::path> particleStates(const fs::path& caseDir)
+{
+    std::vector<std::pair<double, fs::path>> times;
+    for (const auto& e : fs::directory_iterator(caseDir))
+    {
+        if (!fs::exists(e.path()/"spem/particlePositions")) continue;
+        times.push_back({std::stod(e.path().filename().string()), e.path()});
+    }
+    std::sort(times.begin(), times.end());
+    std::vector<fs::path> dirs;
+    for (const auto& t : times) dirs.push_back(t.second);
+    return dirs;
+}
+
+//- Expect every particle of every written time inside [x0, x1] x [y0, inf)
+//  and the particle count unchanged
+void expectParticlesKeptInside
+(
+    const fs::path& caseDir,
+    const size_t nParticles,
+    const double x0,
+    const double x1,
+    const double y0
+)
+{
+    const std::vector<fs::path> states = particleStates(caseDir);
+    EXPECT_GE(states.size(), 3u);
+    for (const fs::path& dir : states)
+    {
+        const std::vector<double> x = readFoamList(dir/"spem/particlePositions", 3);
+        ASSERT_EQ(x.size(), 3*nParticles) << dir;
+        size_t outside = 0;
+        for (size_t i = 0; i < nParticles; ++i)
+        {
+            if (x[3*i] < x0 || x[3*i] > x1 || x[3*i + 1] < y0) ++outside;
+        }
+        EXPECT_EQ(outside, 0u) << "particles through a wall at " << dir;
+    }
+}
+
+//- Columns of a '#'-commented, whitespace-separated table
+std::vector<std::vector<double>> readTable(const fs::path& file)
+{
+    std::ifstream is(file);
+    std::vector<std::vector<double>> rows;
+    std::string line;
+    while (std::getline(is, line))
+    {
+        if (line.empty() || line[0] == '#') continue;
+        std::istringstream ls(line);
+        std::vector<double> row;
+        double v;
+        while (ls >> v) row.push_back(v);
+        if (!row.empty()) rows.push_back(row);
+    }
+    return rows;
+}
+
+} // End anonymous namespace
+
+
+TEST(SphValidation, hydrostaticTankPressureWithinTwoPercent)
+{
+    const fs::path caseDir = copyTutorial("hydrostaticTank", "spemHydrostaticTank");
+    replaceEntry(caseDir/"system/blockMeshDict", "nx", "20");
+    replaceEntry(caseDir/"system/controlDict", "endTime", "2");
+    replaceEntry(caseDir/"system/controlDict", "writeInterval", "0.5");
+    ASSERT_TRUE(runCase(caseDir));
+
+    // Tutorial constants: W = H = 0.5 m, rho0 1000, c 25, g 9.81
+    const double H = 0.5, rho0 = 1000, c = 25, g = 9.81;
+    const size_t n = 800;
+    expectParticlesKeptInside(caseDir, n, 0, H, 0);
+
+    const fs::path last = particleStates(caseDir).back();
+    const std::vector<double> x = readFoamList(last/"spem/particlePositions", 3);
+    const std::vector<double> rho = readFoamList(last/"spem/particleRho", 1);
+    ASSERT_EQ(rho.size(), n);
+
+    // Mean pressure of the particles in 10 horizontal bands, away from the
+    // side walls; the top band (kernel truncated at the surface, tens of Pa)
+    // is reported, not asserted
+    const int nBands = 10;
+    for (int b = 0; b < nBands; ++b)
+    {
+        const double y0 = b*H/nBands, y1 = y0 + H/nBands;
+        double sum = 0;
+        int count = 0;
+        for (size_t i = 0; i < n; ++i)
+        {
+            const double px = x[3*i], py = x[3*i + 1];
+            if (py < y0 || py >= y1 || px < 0.1*H || px > 0.9*H) continue;
+            sum += c*c*(rho[i] - rho0);
+            ++count;
+        }
+        ASSERT_GT(count, 0);
+        const double p = sum/count;
+        const double exact = rho0*g*(H - 0.5*(y0 + y1));
+        const double error = p/exact - 1;
+        std::printf
+        (
+            "hydrostaticTank nx 20, t = %s s: band y = %.3f m: p %.1f Pa,"
+            " rho g (H - y) %.1f Pa, error %+.2f %%\n",
+            last.filename().c_str(), 0.5*(y0 + y1), p, exact, 100*error
+        );
+        if (b < nBands - 1)
+        {
+            EXPECT_LT(std::abs(error), 0.02) << "band y = " << 0.5*(y0 + y1);
+        }
+    }
+    if (!HasFailure()) fs::remove_all(caseDir);
+}
+
+
+TEST(SphValidation, damBreakSurgeFrontAgainstExperiments)
+{
+    const fs::path caseDir = copyTutorial("damBreak", "spemDamBreak");
+    replaceEntry(caseDir/"system/blockMeshDict", "nx", "20");
+    replaceEntry(caseDir/"system/controlDict", "endTime", "0.3");
+    replaceEntry(caseDir/"system/controlDict", "writeInterval", "0.05");
+    ASSERT_TRUE(runCase(caseDir));
+
+    const double a = 0.146, L = 4*a, g = 9.81;
+    expectParticlesKeptInside(caseDir, 1600, 0, L, 0);
+
+    // Our front: T = t sqrt(2 g/a), Z = front/a
+    std::vector<double> T, Z;
+    for (const auto& row : readTable(caseDir/"postProcessing/surgeFront/0/surgeFront.dat"))
+    {
+        T.push_back(row[0]*std::sqrt(2*g/a));
+        Z.push_back(row[1]/a);
+    }
+    ASSERT_GT(T.size(), 100u);
+    auto ours = [&](const double t)
+    {
+        const size_t k = std::lower_bound(T.begin(), T.end(), t) - T.begin();
+        if (k == 0 || k >= T.size()) return std::nan("");
+        const double w = (t - T[k - 1])/(T[k] - T[k - 1]);
+        return (1 - w)*Z[k - 1] + w*Z[k];
+    };
+
+    const fs::path ref = fs::path(SPEM_PROJECT_DIR)/"tutorials/damBreak/referenceData";
+    for (const char* data : {"MartinMoyce1952_surgeFront.dat", "KoshizukaOka1996_surgeFront.dat"})
+    {
+        // Experimental points before the front reaches the far wall
+        std::vector<double> te, ze, zs;
+        for (const auto& row : readTable(ref/data))
+        {
+            const double z = ours(row[0]);
+            if (row[1] >= L/a || row[0] <= 0 || std::isnan(z) || z >= L/a - 0.05)
+            {
+                continue;
+            }
+            te.push_back(row[0]);
+            ze.push_back(row[1]);
+            zs.push_back(z);
+        }
+        ASSERT_GE(te.size(), 5u) << data;
+
+        double worst = 0;
+        for (size_t k = 0; k < te.size(); ++k)
+        {
+            const double e = zs[k]/ze[k] - 1;
+            std::printf
+            (
+                "damBreak nx 20 vs %s: T %.3f Z exp %.3f ours %.3f (%+.1f %%)\n",
+                data, te[k], ze[k], zs[k], 100*e
+            );
+            worst = std::max(worst, std::abs(e));
+        }
+
+        // Front speed dZ/dT: least-squares slopes over the same points
+        // once the front runs (Z >= 1.4, after the initial collapse)
+        auto slope = [&](const std::vector<double>& z)
+        {
+            double st = 0, sz = 0, stt = 0, stz = 0;
+            int m = 0;
+            for (size_t k = 0; k < te.size(); ++k)
+            {
+                if (ze[k] < 1.4) continue;
+                st += te[k]; sz += z[k]; stt += te[k]*te[k]; stz += te[k]*z[k];
+                ++m;
+            }
+            return (m*stz - st*sz)/(m*stt - st*st);
+        };
+        const double sExp = slope(ze), sOurs = slope(zs);
+        std::printf
+        (
+            "damBreak nx 20 vs %s: largest front position error %.1f %%;"
+            " front speed dZ/dT %.3f, experiment %.3f (%+.1f %%)\n",
+            data, 100*worst, sOurs, sExp, 100*(sOurs/sExp - 1)
+        );
+        // The front must advance at the measured speed of Martin and Moyce
+        // (the two experiments differ by 30 % in speed: Koshizuka and Oka's
+        // is reported only). Its position leads the experiments by a nearly
+        // constant time (about 0.2 in T, 17 ms), which releasing the column
+        // at once cannot remove: the experiments' gate needed time to open
+        // (see tutorials/damBreak/referenceData/README.md)
+        if (std::string(data).find("MartinMoyce") == 0)
+        {
+            EXPECT_LT(std::abs(sOurs/sExp - 1), 0.10) << data;
+        }
+    }
+    if (!HasFailure()) fs::remove_all(caseDir);
+}
+
+
+TEST(SphStability, damBreakStableBelowCriticalCourantNumberStopsCleanlyAbove)
+{
+    // Measured critical Courant number of the particles: 1.5-1.75 (coarse
+    // dam break, nx 10, the most violent case); maxCo 1.25 must run, 2.5
+    // must blow up and stop with the last good state written
+    for (const double co : {1.25, 2.5})
+    {
+        const fs::path caseDir = copyTutorial
+        (
+            "damBreak", "spemDamBreakCo" + std::to_string(int(100*co))
+        );
+        replaceEntry(caseDir/"system/blockMeshDict", "nx", "10");
+        replaceEntry(caseDir/"system/controlDict", "endTime", "0.5");
+        replaceEntry(caseDir/"system/controlDict", "writeInterval", "0.1");
+        replaceEntry(caseDir/"system/controlDict", "maxCo", std::to_string(co));
+        const std::string run = "cd '" + caseDir.string() + "' && ";
+        ASSERT_EQ(std::system((run + "blockMesh > log.blockMesh 2>&1").c_str()), 0);
+        ASSERT_EQ(std::system((run + SPEM_MESH_CONVERT + " > log.convert 2>&1").c_str()), 0);
+        const int status = std::system((run + SPEM_FOAM + " > log.spemFoam 2>&1").c_str());
+        const std::string log = testFiles::readText(caseDir/"log.spemFoam");
+        if (co < 1.5)
+        {
+            EXPECT_EQ(status, 0) << "maxCo " << co << " blew up:\n" << log;
+            expectParticlesKeptInside(caseDir, 400, 0, 0.584, 0);
+        }
+        else
+        {
+            EXPECT_NE(status, 0) << "maxCo " << co << " did not blow up";
+            EXPECT_NE(log.find("Run stopped at time"), std::string::npos) << log;
+            EXPECT_NE(log.find("last good state"), std::string::npos) << log;
+            // The last good state is the last written time
+            const std::vector<fs::path> states = particleStates(caseDir);
+            ASSERT_FALSE(states.empty());
+            EXPECT_NE(log.find(states.back().filename().string()), std::string::npos)
+                << "last state " << states.back() << " not named in the log";
+        }
+        if (!HasFailure()) fs::remove_all(caseDir);
+    }
+}
+
+
+// ************************************************************************* //
