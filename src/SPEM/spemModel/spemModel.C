@@ -519,7 +519,13 @@ void Foam::spemModel::buildParticles(const PtrList<spemMaterial>& materials)
             mesh_, patchTypes_, spacing, layers, fluid->rho(), h, ps
         );
 
-    // Lost particles: beyond the mesh's bounding box enlarged by its size
+    // Lost particles: beyond the mesh's bounding box enlarged by
+    // lostParticleDistance times its size on every side. Far enough for
+    // splashes over an open top (a jet up the far wall of the damBreak
+    // tutorial climbs to twice the tank height), near enough to stop a
+    // particle shot away by an unstable step before the neighbour search
+    // has to cover its distance.
+    const scalar lostParticleDistance = 3;
     scalar boxMin[2] = {GREAT, GREAT}, boxMax[2] = {-GREAT, -GREAT};
     for (label i = 0; i < mesh_.nPoints(); ++i)
     {
@@ -532,8 +538,8 @@ void Foam::spemModel::buildParticles(const PtrList<spemMaterial>& materials)
     for (int k = 0; k < 2; ++k)
     {
         const scalar size = boxMax[k] - boxMin[k];
-        boxMin[k] -= size;
-        boxMax[k] += size;
+        boxMin[k] -= lostParticleDistance*size;
+        boxMax[k] += lostParticleDistance*size;
     }
 
     particles_.reset

@@ -188,9 +188,9 @@ void Foam::sphFluid::reorder()
     particles_.reorderField(order, 2, oldPosition_);
     particles_.reorderField(order, 2, oldVelocity_);
     particles_.reorderField(order, 1, oldDensity_);
-    // acceleration_, correction_, gradC_ and divR_ are recomputed by the
-    // passes that follow, except acceleration_ of walls (zero) and what
-    // advance() reads: gradC_ and divR_ are set before it again
+    // Not reordered: acceleration_, correction_, gradC_ and divR_, which
+    // the passes of this evaluate() recompute for every particle before
+    // anything reads them
     cells_.particlesReordered();
 }
 
