@@ -357,6 +357,7 @@ void Foam::spemModel::writeParticleState() const
     vectorIOField xf(xIO, nFluid);
     vectorIOField vf(IOobject(xIO, "particleU"), nFluid);
     scalarIOField rho(IOobject(xIO, "particleRho"), nFluid);
+    scalarIOField rhoOld(IOobject(xIO, "particleRhoOld"), nFluid);
     scalarIOField m(IOobject(xIO, "particleMass"), nFluid);
     scalarIOField h(IOobject(xIO, "particleH"), nFluid);
 
@@ -378,18 +379,24 @@ void Foam::spemModel::writeParticleState() const
         xf[k] = vector(ps.positions()[2*i], ps.positions()[2*i + 1], 0);
         vf[k] = vector(ps.velocities()[2*i], ps.velocities()[2*i + 1], 0);
         rho[k] = ps.density()[i];
+        rhoOld[k] = particles_->oldDensity()[i];
         m[k] = ps.mass()[i];
         h[k] = ps.smoothingLength()[i];
     }
     xf.write();
     vf.write();
     rho.write();
+    rhoOld.write();
     m.write();
     h.write();
 }
 
 
-bool Foam::spemModel::readParticleState(particleSet& particles) const
+bool Foam::spemModel::readParticleState
+(
+    particleSet& particles,
+    std::vector<scalar>& rhoOld
+) const
 {
     IOobject xIO
     (
@@ -420,6 +427,16 @@ bool Foam::spemModel::readParticleState(particleSet& particles) const
         (
             xf[i].x(), xf[i].y(), vf[i].x(), vf[i].y(), rho[i], 0, m[i], h[i]
         );
+    }
+
+    // Densities at the start of the step (volumes of the next evaluation);
+    // a state without them restarts with the current ones
+    IOobject oldIO(xIO, "particleRhoOld");
+    rhoOld.assign(rho.begin(), rho.end());
+    if (oldIO.typeHeaderOk<scalarIOField>(true))
+    {
+        const scalarIOField old(oldIO);
+        if (old.size() == n) rhoOld.assign(old.begin(), old.end());
     }
     Info<< "Restart: read " << n << " fluid particles from " << xIO.path()
         << nl << endl;
@@ -482,7 +499,8 @@ void Foam::spemModel::buildParticles(const PtrList<spemMaterial>& materials)
     }
     const sphFluid::controls ctrl = sphFluid::controls::read(schemes_);
     particleSet ps;
-    if (readParticleState(ps))
+    std::vector<scalar> rhoOld;
+    if (readParticleState(ps, rhoOld))
     {
         if (ps.size() != label(fluidElements.size()))
         {
@@ -551,6 +569,13 @@ void Foam::spemModel::buildParticles(const PtrList<spemMaterial>& materials)
             boxMin, boxMax
         )
     );
+
+    if (!rhoOld.empty())
+    {
+        // Restart: the fluid particles come first; walls start at rho0
+        rhoOld.resize(particles_->particles().size(), fluid->rho());
+        particles_->setOldDensity(rhoOld);
+    }
 
     const sphFluid::controls& c = particles_->schemeControls();
     Info<< "Particles (method SPH): " << nFluid << " fluid particles from "

@@ -220,8 +220,8 @@ void Foam::sphFluid::densityPass(const Kernel&)
     const scalar hx = rho0*gx_/c2, hy = rho0*gy_/c2;
 
     // The density of step n+1 needs the densities of step n of the
-    // neighbours (diffusion): read rhoOld, write rho. At t = 0 and after
-    // revert() they are the same.
+    // neighbours (volumes, diffusion): read rhoOld, write rho. An exact
+    // restart needs both (setOldDensity()).
     // Performance critical: every fluid particle, every step.
     #pragma omp parallel for schedule(static) if(n > minParallelLoop)
     for (label i = 0; i < n; ++i)
@@ -242,7 +242,10 @@ void Foam::sphFluid::densityPass(const Kernel&)
                 const scalar F = Kernel::F(r, hij);
                 // grad_i W_ij = (x_i - x_j) F
                 const scalar gx = dx*F, gy = dy*F;
-                const scalar Vj = m[j]/rhoOld[j];
+                // Volumes of the start of the step; a wall particle's is
+                // its fixed lattice cell
+                const bool fluidj = kind[j] == particleSet::kind::fluid;
+                const scalar Vj = m[j]/(fluidj ? rhoOld[j] : rho0);
 
                 // Moments sum (x_j - x_i) (x) grad_i W V_j
                 Mxx -= dx*gx*Vj;
@@ -255,7 +258,6 @@ void Foam::sphFluid::densityPass(const Kernel&)
                 // Continuity: m_j v_ij (x) grad_i W. A wall particle's
                 // velocity field holds the mirrored velocity of the viscous
                 // term; the wall itself is at rest.
-                const bool fluidj = kind[j] == particleSet::kind::fluid;
                 const scalar wx = m[j]*(vxi - (fluidj ? v[2*j] : 0));
                 const scalar wy = m[j]*(vyi - (fluidj ? v[2*j + 1] : 0));
                 Sxx += wx*gx;
@@ -289,11 +291,17 @@ void Foam::sphFluid::densityPass(const Kernel&)
         // Eq. (16): drho/dt = sum m_j v_ij . C_i grad_i W_ij
         const scalar drho =
             cxx*Sxx + cxy*(Sxy + Syx) + cyy*Syy + delta*c*diffusion;
-        scalar rhoNew = rhoi + dt*drho;
-        // Free surface: the fluid cannot pull on the air, so a surface
-        // particle's density (pressure) stays at or above rho0 (0):
-        // splashes and thin jets keep finite volumes and do not clump
-        if (div < threshold) rhoNew = std::max(rhoNew, rho0);
+        // No step pending (start, restart, re-evaluation): the density
+        // stays
+        scalar rhoNew = rho[i];
+        if (dt > 0)
+        {
+            rhoNew = rhoi + dt*drho;
+            // Free surface: the fluid cannot pull on the air, so a surface
+            // particle's density (pressure) stays at or above rho0 (0):
+            // splashes and thin jets keep finite volumes and do not clump
+            if (div < threshold) rhoNew = std::max(rhoNew, rho0);
+        }
         rho[i] = rhoNew;
         // Eq. (7)
         p[i] = c2*(rhoNew - rho0);
@@ -554,6 +562,12 @@ bool Foam::sphFluid::advance(const scalar dt)
     }
     pendingDeltaT_ = dt;
     return true;
+}
+
+
+void Foam::sphFluid::setOldDensity(const std::vector<scalar>& rhoOld)
+{
+    oldDensity_ = rhoOld;
 }
 
 

@@ -19,7 +19,7 @@ Foam::functionObjects::patchForce::patchForce
     const dictionary& dict
 )
 :
-    spemFunctionObject(name, runTime, dict)
+    spemFunctionObject(name, runTime, dict, needs::elements)
 {
     read(dict);
     writeColumns({"Fx", "Fy"});
@@ -59,7 +59,7 @@ bool Foam::functionObjects::patchForce::read(const dictionary& dict)
 
 bool Foam::functionObjects::patchForce::write()
 {
-    const std::vector<scalar>& R = model().elements().constraintReactions();
+    const std::vector<scalar>& R = elements().constraintReactions();
     scalar F[2] = {0, 0};
     for (const label n : nodes_)
     {

@@ -19,7 +19,7 @@ Foam::functionObjects::pointDisplacement::pointDisplacement
     const dictionary& dict
 )
 :
-    spemFunctionObject(name, runTime, dict),
+    spemFunctionObject(name, runTime, dict, needs::elements),
     px_(0),
     py_(0),
     element_(-1),
@@ -41,7 +41,7 @@ bool Foam::functionObjects::pointDisplacement::read(const dictionary& dict)
 
 bool Foam::functionObjects::pointDisplacement::write()
 {
-    const elementModel& em = model().elements();
+    const elementModel& em = elements();
     if (element_ < 0)
     {
         element_ = em.locate(px_, py_, true, weights_);

@@ -68,7 +68,7 @@ bool Foam::functionObjects::pressureProbe::write()
     {
         // Kernel (Shepard) interpolation from the particles, wall particles
         // included so that a probe on a wall reads the wall pressure
-        const sphFluid& sph = model().particles();
+        const sphFluid& sph = particles();
         for (size_t i = 0; i < locations_.size()/2; ++i)
         {
             scalar p;
@@ -85,7 +85,7 @@ bool Foam::functionObjects::pressureProbe::write()
         return true;
     }
 
-    const elementModel& em = model().elements();
+    const elementModel& em = elements();
     for (size_t i = 0; i < locations_.size()/2; ++i)
     {
         scalar w[3];

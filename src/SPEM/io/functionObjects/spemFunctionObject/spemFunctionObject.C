@@ -5,11 +5,13 @@ Foam::functionObjects::spemFunctionObject::spemFunctionObject
 (
     const word& name,
     const Time& runTime,
-    const dictionary& dict
+    const dictionary& dict,
+    const needs what
 )
 :
     timeFunctionObject(name, runTime),
-    writeFile(runTime, name, name, dict)
+    writeFile(runTime, name, name, dict),
+    needs_(what)
 {
     // writeFile sets a field width for its value columns, which would pad
     // the first header line
@@ -28,6 +30,46 @@ Foam::functionObjects::spemFunctionObject::model() const
             << exit(FatalError);
     }
     return time_.lookupObject<spemModel>("spemProperties");
+}
+
+
+const Foam::elementModel&
+Foam::functionObjects::spemFunctionObject::elements() const
+{
+    const spemModel& m = model();
+    if (!m.hasElements())
+    {
+        FatalErrorInFunction
+            << "Function object " << name() << " of type " << type()
+            << " needs elements, but this case has no elements (method "
+            << spemModel::methodTypeNames[m.method()] << ')'
+            << exit(FatalError);
+    }
+    return m.elements();
+}
+
+
+const Foam::sphFluid&
+Foam::functionObjects::spemFunctionObject::particles() const
+{
+    const spemModel& m = model();
+    if (!m.hasParticles())
+    {
+        FatalErrorInFunction
+            << "Function object " << name() << " of type " << type()
+            << " needs particles (method SPH), but this case has no particles (method "
+            << spemModel::methodTypeNames[m.method()] << ')'
+            << exit(FatalError);
+    }
+    return m.particles();
+}
+
+
+bool Foam::functionObjects::spemFunctionObject::execute()
+{
+    if (needs_ == needs::elements) elements();
+    if (needs_ == needs::particles) particles();
+    return true;
 }
 
 

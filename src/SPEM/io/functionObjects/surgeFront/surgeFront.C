@@ -19,7 +19,7 @@ Foam::functionObjects::surgeFront::surgeFront
     const dictionary& dict
 )
 :
-    spemFunctionObject(name, runTime, dict)
+    spemFunctionObject(name, runTime, dict, needs::particles)
 {
     read(dict);
     writeColumns({"front", "height"});
@@ -47,7 +47,7 @@ bool Foam::functionObjects::surgeFront::read(const dictionary& dict)
 
 bool Foam::functionObjects::surgeFront::write()
 {
-    const sphFluid& sph = model().particles();
+    const sphFluid& sph = particles();
     if (!writeToFile()) return true;
 
     // Upward: against gravity
