@@ -539,8 +539,8 @@ void Foam::spemModel::buildParticles(const PtrList<spemMaterial>& materials)
 
     // Lost particles: beyond the mesh's bounding box enlarged by
     // lostParticleDistance times its size on every side. Far enough for
-    // splashes over an open top (a jet up the far wall of the damBreak
-    // tutorial climbs to twice the tank height), near enough to stop a
+    // splashes over an open top (the jet up the far wall of the damBreak
+    // tutorial climbs to 2-3 tank heights), near enough to stop a
     // particle shot away by an unstable step before the neighbour search
     // has to cover its distance.
     const scalar lostParticleDistance = 3;
