@@ -39,6 +39,7 @@ Description
 
 \*---------------------------------------------------------------------------*/
 
+#include "residentMemory.H"
 #include <benchmark/benchmark.h>
 
 #include "testMeshes.H"
@@ -287,37 +288,9 @@ BENCHMARK(advanceOnly)->Apply(elementsAndThreads)->UseRealTime()
 namespace
 {
 
-//- Resident set size and its high-water mark of this process [bytes]
-struct residentMemory
-{
-    double rss = 0, peak = 0;
-};
-
-residentMemory readResidentMemory()
-{
-    residentMemory m;
-    std::ifstream status("/proc/self/status");
-    std::string line;
-    while (std::getline(status, line))
-    {
-        std::istringstream is(line);
-        std::string key;
-        double kB = 0;
-        is >> key >> kB;
-        if (key == "VmRSS:") m.rss = 1024*kB;
-        if (key == "VmHWM:") m.peak = 1024*kB;
-    }
-    return m;
-}
-
-//- Reset VmHWM to the current VmRSS (Linux >= 4.0, proc(5) clear_refs);
-//  false if the kernel refuses
-bool resetPeak()
-{
-    std::ofstream clearRefs("/proc/self/clear_refs");
-    clearRefs << "5" << std::flush;
-    return bool(clearRefs);
-}
+using benchmarkTools::residentMemory;
+using benchmarkTools::readResidentMemory;
+using benchmarkTools::resetPeak;
 
 //- One array of the model: name, bytes, touched every step or not
 struct modelArray
