@@ -440,13 +440,14 @@ protected:
         return text;
     }
 
-    //- A vectorIOField of <case>/<timeName>/spem/ (the current case by
-    //  default)
-    Foam::vectorField readState
+    //- A field (vectorIOField, scalarIOField) of <case>/<timeName>/spem/
+    //  (the current case by default)
+    template<class IOFieldType>
+    IOFieldType readStateField
     (
         const std::string& timeName,
         const std::string& name,
-        fs::path caseDir = fs::path()
+        fs::path caseDir
     ) const
     {
         if (caseDir.empty()) caseDir = caseDir_;
@@ -456,7 +457,7 @@ protected:
             Foam::fileName(caseDir.parent_path().string()),
             Foam::fileName(caseName)
         );
-        return Foam::vectorIOField
+        return IOFieldType
         (
             Foam::IOobject
             (
@@ -466,8 +467,18 @@ protected:
         );
     }
 
-    //- A scalarIOField of <case>/<timeName>/spem/ (the current case by
-    //  default)
+    //- A vectorIOField of <case>/<timeName>/spem/
+    Foam::vectorField readState
+    (
+        const std::string& timeName,
+        const std::string& name,
+        fs::path caseDir = fs::path()
+    ) const
+    {
+        return readStateField<Foam::vectorIOField>(timeName, name, caseDir);
+    }
+
+    //- A scalarIOField of <case>/<timeName>/spem/
     Foam::scalarField readScalarState
     (
         const std::string& timeName,
@@ -475,21 +486,7 @@ protected:
         fs::path caseDir = fs::path()
     ) const
     {
-        if (caseDir.empty()) caseDir = caseDir_;
-        Foam::Time runTime
-        (
-            Foam::Time::controlDictName,
-            Foam::fileName(caseDir.parent_path().string()),
-            Foam::fileName(caseName)
-        );
-        return Foam::scalarIOField
-        (
-            Foam::IOobject
-            (
-                name, Foam::fileName(timeName), "spem", runTime,
-                Foam::IOobject::MUST_READ, Foam::IOobject::NO_WRITE, false
-            )
-        );
+        return readStateField<Foam::scalarIOField>(timeName, name, caseDir);
     }
 
     //- method SPH with a fixed time step of Courant number 0.42 (the
