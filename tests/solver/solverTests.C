@@ -489,6 +489,45 @@ protected:
         return readStateField<Foam::scalarIOField>(timeName, name, caseDir);
     }
 
+    //- Run case A continuously to twoT, and case B to T, then with endTime
+    //  twoT on from its latest time; the restart's log must hold the lines
+    //  restartLines(B) and end normally
+    template<class RestartLines>
+    void runContinuousAndRestarted
+    (
+        const std::string& T,
+        const std::string& twoT,
+        RestartLines&& restartLines,
+        fs::path& caseA,
+        fs::path& caseB
+    )
+    {
+        // A: continuously to 2T
+        setControl("endTime", twoT);
+        runExpectingSuccess();
+        if (HasFailure()) return;
+        caseA = caseDir_;
+
+        // B: to T, then endTime 2T and on from the latest time
+        setControl("endTime", T);
+        runExpectingSuccess();
+        if (HasFailure()) return;
+        caseB = caseDir_;
+        ASSERT_FALSE(fs::exists(caseB/twoT));
+        setControl("endTime", twoT);
+        writeDictionaries();
+        const int status = runSolver("log.spemFoam.restart");
+        const std::string restartLog = log("log.spemFoam.restart");
+        ASSERT_EQ(status, 0) << restartLog;
+        std::vector<std::string> lines = restartLines(caseB);
+        lines.push_back("\nEnd");
+        for (const std::string& line : lines)
+        {
+            EXPECT_TRUE(contains(restartLog, line))
+                << "'" << line << "' is not in the log:\n" << restartLog;
+        }
+    }
+
     //- method SPH with a fixed time step of Courant number 0.42 (the
     //  particles' stable step at Courant number 1 is 0.25 h/c = 0.96 ms
     //  with h = 1.3 x the particle spacing sqrt(L H/144) = 0.0589 m)
@@ -921,31 +960,20 @@ protected:
         setControl("writeInterval", "50");
         damping_ = "    massProportional 5;\n";
 
-        // A: continuously to 2T
-        setControl("endTime", twoT);
-        runExpectingSuccess();
-        if (HasFailure()) return;
-        const fs::path caseA = caseDir_;
-
-        // B: to T, then endTime 2T and on from the latest time
-        setControl("endTime", T);
-        runExpectingSuccess();
-        if (HasFailure()) return;
-        const fs::path caseB = caseDir_;
-        ASSERT_FALSE(fs::exists(caseB/twoT));
-        setControl("endTime", twoT);
-        writeDictionaries();
-        const int status = runSolver("log.spemFoam.restart");
-        const std::string restartLog = log("log.spemFoam.restart");
-        ASSERT_EQ(status, 0) << restartLog;
-        expectInLog
+        fs::path caseA, caseB;
+        runContinuousAndRestarted
         (
-            restartLog,
+            T, twoT,
+            [&](const fs::path& B)
             {
-                "Restart: read node positions", (caseB/T/"spem").string(),
-                "\nEnd"
-            }
+                return std::vector<std::string>
+                {
+                    "Restart: read node positions", (B/T/"spem").string()
+                };
+            },
+            caseA, caseB
         );
+        if (HasFailure()) return;
 
         double pointsError = 1, velocityError = 1, maxU = 0;
         try
@@ -1452,30 +1480,21 @@ TEST_F(Solver, sphRestartContinuesFromWrittenParticleState)
     const std::string T = "0.06", twoT = "0.12";
     setControl("writeInterval", "50");
 
-    setControl("endTime", twoT);
-    runExpectingSuccess();
-    if (HasFailure()) return;
-    const fs::path caseA = caseDir_;
-
-    setControl("endTime", T);
-    runExpectingSuccess();
-    if (HasFailure()) return;
-    const fs::path caseB = caseDir_;
-    ASSERT_FALSE(fs::exists(caseB/twoT));
-    setControl("endTime", twoT);
-    writeDictionaries();
-    const int status = runSolver("log.spemFoam.restart");
-    const std::string restartLog = log("log.spemFoam.restart");
-    ASSERT_EQ(status, 0) << restartLog;
-    expectInLog
+    fs::path caseA, caseB;
+    runContinuousAndRestarted
     (
-        restartLog,
+        T, twoT,
+        [&](const fs::path& B)
         {
-            "Restart: read " + std::to_string(2*nCellsX*nCellsY)
-          + " fluid particles from \"" + (caseB/T/"spem").string() + '"',
-            "\nEnd"
-        }
+            return std::vector<std::string>
+            {
+                "Restart: read " + std::to_string(2*nCellsX*nCellsY)
+              + " fluid particles from \"" + (B/T/"spem").string() + '"'
+            };
+        },
+        caseA, caseB
     );
+    if (HasFailure()) return;
 
     double xError = 1, UError = 1, rhoError = 1, maxU = 0;
     try
