@@ -28,6 +28,14 @@ import math
 import os
 import sys
 
+# The shared reader of function object output (bin/tools)
+sys.path.insert(0, os.path.join(
+    os.environ.get("SPEM_PROJECT_DIR",
+                   os.path.join(os.path.dirname(os.path.abspath(__file__)),
+                                "..", "..")),
+    "bin", "tools"))
+from spemPostProcessing import readFunctionObject  # noqa: E402
+
 np = None   # numpy, imported in main() once the results have been found
 
 scriptDir = os.path.dirname(os.path.abspath(__file__))
@@ -65,54 +73,10 @@ def parseArguments():
     return parser.parse_args()
 
 
-def isNumber(word):
-    try:
-        float(word)
-        return True
-    except ValueError:
-        return False
-
-
 def readSurgeFront(caseDir):
-    """Return arrays (time, front, height) from all start-time folders."""
-    dataDir = os.path.join(caseDir, "postProcessing", "surgeFront")
-    startTimes = []
-    if os.path.isdir(dataDir):
-        startTimes = sorted(
-            (d for d in os.listdir(dataDir)
-             if isNumber(d)
-             and os.path.isfile(os.path.join(dataDir, d, "surgeFront.dat"))),
-            key=float)
-    if not startTimes:
-        sys.exit("plot.py: no %s found; run the case first"
-                 % os.path.join(dataDir, "0", "surgeFront.dat"))
-
-    # Later start times overwrite earlier ones where they overlap
-    rowsAtTime = {}
-    for startTime in startTimes:
-        fileName = os.path.join(dataDir, startTime, "surgeFront.dat")
-        rows = {}
-        with open(fileName) as f:
-            for line in f:
-                words = line.split()
-                if not words or words[0].startswith("#"):
-                    continue
-                if len(words) < 3 or not all(isNumber(w) for w in words[:3]):
-                    # A run that was killed may leave a partial last line
-                    continue
-                rows[float(words[0])] = (float(words[1]), float(words[2]))
-        if rows:
-            first = min(rows)
-            rowsAtTime = {t: r for t, r in rowsAtTime.items() if t < first}
-            rowsAtTime.update(rows)
-
-    if not rowsAtTime:
-        sys.exit("plot.py: %s holds no data rows" % dataDir)
-
-    times = sorted(rowsAtTime)
-    front = [rowsAtTime[t][0] for t in times]
-    height = [rowsAtTime[t][1] for t in times]
-    return times, front, height
+    """Return lists (time, front, height) from all start-time folders."""
+    comments, times, rows = readFunctionObject(caseDir, "surgeFront", 2)
+    return times, [r[0] for r in rows], [r[1] for r in rows]
 
 
 def readReference(fileName, required):

@@ -16,8 +16,15 @@ Usage: python3 plot.py            (from any directory; uses its own folder)
 import os
 import sys
 
+# The shared reader of function object output (bin/tools)
+sys.path.insert(0, os.path.join(
+    os.environ.get("SPEM_PROJECT_DIR",
+                   os.path.join(os.path.dirname(os.path.abspath(__file__)),
+                                "..", "..")),
+    "bin", "tools"))
+from spemPostProcessing import readFunctionObject  # noqa: E402
+
 caseDir = os.path.dirname(os.path.abspath(__file__))
-dataDir = os.path.join(caseDir, "postProcessing", "midSpan")
 referenceFile = os.path.join(caseDir, "referenceData", "midSpanDeflection.dat")
 pngFile = os.path.join(caseDir, "midSpanDeflection.png")
 
@@ -25,51 +32,10 @@ pngFile = os.path.join(caseDir, "midSpanDeflection.png")
 averagedFraction = 0.1
 
 
-def isNumber(word):
-    try:
-        float(word)
-        return True
-    except ValueError:
-        return False
-
-
 def readMidSpan():
     """Return sorted lists (time, Dy) from all start-time folders."""
-    startTimes = []
-    if os.path.isdir(dataDir):
-        startTimes = sorted(
-            (d for d in os.listdir(dataDir)
-             if isNumber(d)
-             and os.path.isfile(os.path.join(dataDir, d, "midSpan.dat"))),
-            key=float)
-    if not startTimes:
-        sys.exit("plot.py: no %s found; run spemFoam first (./Allrun)"
-                 % os.path.join(dataDir, "<startTime>", "midSpan.dat"))
-
-    # Later start times overwrite earlier ones where they overlap
-    dyAtTime = {}
-    for startTime in startTimes:
-        fileName = os.path.join(dataDir, startTime, "midSpan.dat")
-        rows = {}
-        with open(fileName) as f:
-            for line in f:
-                words = line.split()
-                if not words or words[0].startswith("#"):
-                    continue
-                if len(words) < 3:
-                    # A run that was killed may leave a partial last line
-                    continue
-                rows[float(words[0])] = float(words[2])
-        if rows:
-            first = min(rows)
-            dyAtTime = {t: dy for t, dy in dyAtTime.items() if t < first}
-            dyAtTime.update(rows)
-
-    if not dyAtTime:
-        sys.exit("plot.py: %s holds no data rows" % dataDir)
-
-    times = sorted(dyAtTime)
-    return times, [dyAtTime[t] for t in times]
+    comments, times, rows = readFunctionObject(caseDir, "midSpan", 2)
+    return times, [r[1] for r in rows]
 
 
 def readReference():

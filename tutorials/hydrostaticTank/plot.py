@@ -40,6 +40,14 @@ import os
 import re
 import sys
 
+# The shared reader of function object output (bin/tools)
+sys.path.insert(0, os.path.join(
+    os.environ.get("SPEM_PROJECT_DIR",
+                   os.path.join(os.path.dirname(os.path.abspath(__file__)),
+                                "..", "..")),
+    "bin", "tools"))
+from spemPostProcessing import isNumber, readFunctionObject  # noqa: E402
+
 caseDir = os.path.dirname(os.path.abspath(__file__))
 probeDir = os.path.join(caseDir, "postProcessing", "pressure")
 probePng = os.path.join(caseDir, "probePressure.png")
@@ -56,14 +64,6 @@ averagedFraction = 0.2
 
 # Number of horizontal bands of height H/nBands for the particle pressure
 nBands = 10
-
-
-def isNumber(word):
-    try:
-        float(word)
-        return True
-    except ValueError:
-        return False
 
 
 def stripComments(text):
@@ -122,48 +122,20 @@ def readCaseConstants():
 
 def readProbes():
     """Return probe heights, sorted times and one pressure list per probe."""
-    startTimes = []
-    if os.path.isdir(probeDir):
-        startTimes = sorted(
-            (d for d in os.listdir(probeDir)
-             if isNumber(d)
-             and os.path.isfile(os.path.join(probeDir, d, "pressure.dat"))),
-            key=float)
-    if not startTimes:
-        sys.exit("plot.py: no %s found; run spemFoam first (./Allrun)"
-                 % os.path.join(probeDir, "<startTime>", "pressure.dat"))
-
+    comments, rowTimes, rows = readFunctionObject(caseDir, "pressure")
     probeY = {}
-    rowsAtTime = {}
-    for startTime in startTimes:
-        rows = {}
-        with open(os.path.join(probeDir, startTime, "pressure.dat")) as f:
-            for line in f:
-                m = re.match(r"#\s*Probe\s+(\d+)\s*\(\s*(\S+)\s+(\S+)\s*\)",
-                             line)
-                if m:
-                    probeY[int(m.group(1))] = float(m.group(3))
-                    continue
-                words = line.split()
-                if not words or words[0].startswith("#"):
-                    continue
-                if not all(isNumber(w) for w in words):
-                    continue
-                rows[float(words[0])] = [float(w) for w in words[1:]]
-        if rows:
-            first = min(rows)
-            rowsAtTime = {t: r for t, r in rowsAtTime.items() if t < first}
-            rowsAtTime.update(rows)
-
-    if not rowsAtTime:
-        sys.exit("plot.py: %s holds no data rows" % probeDir)
+    for line in comments:
+        m = re.match(r"#\s*Probe\s+(\d+)\s*\(\s*(\S+)\s+(\S+)\s*\)", line)
+        if m:
+            probeY[int(m.group(1))] = float(m.group(3))
 
     nProbes = len(probeY)
-    times = sorted(t for t in rowsAtTime if len(rowsAtTime[t]) == nProbes)
-    if not times or nProbes == 0:
+    complete = [k for k, r in enumerate(rows) if len(r) == nProbes]
+    if not complete or nProbes == 0:
         sys.exit("plot.py: %s: no complete rows or no '# Probe' lines"
                  % probeDir)
-    pressures = [[rowsAtTime[t][i] for t in times] for i in range(nProbes)]
+    times = [rowTimes[k] for k in complete]
+    pressures = [[rows[k][i] for k in complete] for i in range(nProbes)]
     return [probeY[i] for i in range(nProbes)], times, pressures
 
 
