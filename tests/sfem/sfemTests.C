@@ -9,6 +9,8 @@ Description
 #include "testMeshes.H"
 #include "testModels.H"
 #include "elasticSolid.H"
+#include "initialDensity.H"
+#include "IStringStream.H"
 
 #include <gtest/gtest.h>
 
@@ -194,6 +196,231 @@ TEST(ESFEM, nodalMassesSumToRegionMasses)
 
     // Interface edges give one domain per side: 10 extra domains
     EXPECT_EQ(em->nDomains(), mesh.nEdges() + 10);
+}
+
+
+// * * * * * * * * * * * * * * * Initial state  * * * * * * * * * * * * * * //
+
+namespace
+{
+
+// Water 0.5 m wide and 0.6 m deep under 0.4 m of empty space (void)
+const triMesh tankWithAir()
+{
+    return testMeshes::build
+    ({
+        {0, 0.5, 0, 0.6, 5, 12, "water"},
+        {0, 0.5, 0.6, 1.0, 5, 8, "air"}
+    });
+}
+
+const std::string hydrostaticWater =
+    "model weaklyCompressibleNewtonian; rho 1000; c 20; initialPressure hydrostatic;";
+
+//- initialDensity on the mesh with the region dictionaries given as text
+std::vector<scalar> densityOf
+(
+    const triMesh& mesh,
+    const std::string& regionsText,
+    const std::map<std::string, patchType>& patches,
+    const scalar gx,
+    const scalar gy
+)
+{
+    IStringStream is(regionsText);
+    const dictionary regions(is);
+    PtrList<spemMaterial> mats(mesh.nRegions());
+    forAll(mesh.regionNames(), r)
+    {
+        const dictionary& d = regions.subDict(mesh.regionNames()[r]);
+        if (d.get<word>("model") != "void")
+        {
+            mats.set(r, spemMaterial::New(mesh.regionNames()[r], d));
+        }
+    }
+    return initialDensity
+    (
+        mesh, testModels::patchTypes(mesh, patches), mats, regions, gx, gy
+    );
+}
+
+scalar centroidY(const triMesh& mesh, const label t)
+{
+    const label* n = &mesh.triangles()[3*t];
+    return
+    (
+        mesh.points()[2*n[0] + 1] + mesh.points()[2*n[1] + 1]
+      + mesh.points()[2*n[2] + 1]
+    )/3;
+}
+
+} // End anonymous namespace
+
+
+TEST(InitialDensity, hydrostaticWaterIsTheExactWeaklyCompressibleColumnBelowTheVoid)
+{
+    const triMesh mesh = tankWithAir();
+    const std::vector<scalar> rho = densityOf
+    (
+        mesh,
+        "water {" + hydrostaticWater + "} air { model void; }",
+        {{"left", patchType::slipWall}, {"right", patchType::slipWall},
+         {"bottom", patchType::slipWall}},
+        0, -9.81
+    );
+    ASSERT_EQ(label(rho.size()), mesh.nTriangles());
+    const label water = mesh.findRegion("water");
+    for (label t = 0; t < mesh.nTriangles(); ++t)
+    {
+        if (mesh.triangleRegion()[t] != water)
+        {
+            EXPECT_EQ(rho[t], 0) << "void triangle " << t;
+            continue;
+        }
+        // The free surface is the water-void interface at y = 0.6:
+        // dp/dz = -rho g with p = c^2 (rho - rho0)
+        const scalar depth = 0.6 - centroidY(mesh, t);
+        const scalar exact = 1000*std::exp(9.81*depth/(20*20));
+        EXPECT_NEAR(rho[t], exact, 1e-12*exact) << "triangle " << t;
+    }
+}
+
+
+TEST(InitialDensity, freeSurfacePatchSetsTheLevelAndZeroStartKeepsRho0)
+{
+    // Water only: its top patch is the free surface at y = 1
+    const triMesh mesh = testMeshes::build({{0, 0.5, 0, 1.0, 5, 20, "water"}});
+    const auto walls = std::map<std::string, patchType>
+    {
+        {"left", patchType::noSlipWall}, {"right", patchType::noSlipWall},
+        {"bottom", patchType::noSlipWall}
+    };
+    const std::vector<scalar> hydro = densityOf
+    (
+        mesh, "water {" + hydrostaticWater + "}", walls, 0, -9.81
+    );
+    const std::vector<scalar> zero = densityOf
+    (
+        mesh, "water { model weaklyCompressibleNewtonian; rho 1000; c 20; }",
+        walls, 0, -9.81
+    );
+    scalar pBottomRow = 0;
+    label nBottomRow = 0;
+    for (label t = 0; t < mesh.nTriangles(); ++t)
+    {
+        EXPECT_EQ(zero[t], 1000);
+        const scalar y = centroidY(mesh, t);
+        const scalar exact = 1000*std::exp(9.81*(1 - y)/400);
+        EXPECT_NEAR(hydro[t], exact, 1e-12*exact);
+        if (y < 0.05)
+        {
+            pBottomRow += 400*(hydro[t] - 1000) - 1000*9.81*(1 - y);
+            ++nBottomRow;
+        }
+    }
+    // Against rho0 g d the weakly compressible column is heavier by
+    // g d/(2 c^2) = 1.2 % at the bottom: not the linear profile
+    ASSERT_GT(nBottomRow, 0);
+    EXPECT_GT(pBottomRow/nBottomRow, 0.01*1000*9.81*0.97);
+}
+
+
+TEST(InitialDensity, hydrostaticRegionWithoutFreeSurfaceStopsNamingTheRegion)
+{
+    const triMesh mesh = testMeshes::build({{0, 1, 0, 1, 4, 4, "water"}});
+    const bool wasThrowing = FatalIOError.throwExceptions();
+    std::string message;
+    try
+    {
+        densityOf
+        (
+            mesh, "water {" + hydrostaticWater + "}",
+            {{"left", patchType::noSlipWall}, {"right", patchType::noSlipWall},
+             {"bottom", patchType::noSlipWall}, {"top", patchType::noSlipWall}},
+            0, -9.81
+        );
+        ADD_FAILURE() << "a closed hydrostatic region was accepted";
+    }
+    catch (const IOerror& err)
+    {
+        message = err.message();
+    }
+    FatalIOError.throwExceptions(wasThrowing);
+    std::cout << "FatalIOError message:\n" << message << std::endl;
+    EXPECT_NE(message.find("water"), std::string::npos) << message;
+    EXPECT_NE(message.find("free surface"), std::string::npos) << message;
+}
+
+
+namespace
+{
+
+//- Largest node speed over 0.4 s (two periods of the first acoustic mode,
+//  4 H/c = 0.2 s) of an undamped water column 0.5 x 1 m of nx x 2 nx
+//  cells, started at p = 0 or hydrostatic
+scalar largestSpeedOfColumn(const int nx, const bool hydrostatic)
+{
+    const triMesh mesh =
+        testMeshes::build({{0, 0.5, 0, 1.0, nx, 2*nx, "water"}});
+    const auto walls = std::map<std::string, patchType>
+    {
+        {"left", patchType::slipWall}, {"right", patchType::slipWall},
+        {"bottom", patchType::slipWall}
+    };
+    const std::string text =
+        "model weaklyCompressibleNewtonian; rho 1000; c 20; mu 1e-3;"
+      + std::string(hydrostatic ? " initialPressure hydrostatic;" : "");
+    const std::vector<scalar> rho =
+        densityOf(mesh, "water {" + text + "}", walls, 0, -9.81);
+    auto em = testModels::model
+    (
+        mesh, testModels::materials(mesh, {{"water", text}}), walls, rho
+    );
+    em->setGravity(0, -9.81);
+    EXPECT_TRUE(em->evaluate()) << em->failure();
+    scalar t = 0, vMax = 0;
+    while (t < 0.4)
+    {
+        const scalar dt = 0.5*em->stableDeltaT();
+        if (!em->advance(dt) || !em->evaluate())
+        {
+            ADD_FAILURE() << em->failure();
+            break;
+        }
+        t += dt;
+        for (label n = 0; n < em->nNodes(); ++n)
+        {
+            const scalar* v = &em->velocities()[2*n];
+            vMax = std::max(vMax, std::hypot(v[0], v[1]));
+        }
+    }
+    return vMax;
+}
+
+} // End anonymous namespace
+
+
+TEST(InitialDensity, hydrostaticStartKeepsAnElementColumnAtRest)
+{
+    // Without damping, a column started at p = 0 falls under gravity for
+    // the acoustic time H/c and then oscillates with a velocity of order
+    // g H/c. Started hydrostatic it is in equilibrium up to the
+    // discretisation: the residual motion shrinks with the cell size.
+    const scalar zero = largestSpeedOfColumn(10, false);
+    const scalar coarse = largestSpeedOfColumn(5, true);
+    const scalar fine = largestSpeedOfColumn(10, true);
+    const scalar finer = largestSpeedOfColumn(20, true);
+    std::printf
+    (
+        "largest node speed over 0.4 s: started at p = 0 %.3e m/s (g H/c ="
+        " %.3e); hydrostatic %.3e, %.3e, %.3e m/s at 5, 10, 20 cells wide\n",
+        zero, 9.81*1.0/20, coarse, fine, finer
+    );
+    EXPECT_GT(zero, 0.5*9.81*1.0/20);
+    EXPECT_LT(fine, 0.02*zero);
+    // At least first order in the cell size
+    EXPECT_LT(fine, 0.6*coarse);
+    EXPECT_LT(finer, 0.6*fine);
 }
 
 

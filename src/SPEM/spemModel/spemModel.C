@@ -1,4 +1,5 @@
 #include "spemModel.H"
+#include "initialDensity.H"
 #include "Time.H"
 #include "vectorIOField.H"
 #include "uniformDimensionedFields.H"
@@ -98,9 +99,11 @@ void Foam::spemModel::readBoundaries()
         checkKeywords(bcDict.subDict(name), {"type"});
         patchTypes_[p] = patchTypeNames.get("type", bcDict.subDict(name));
     }
+}
 
-    if (!elements_) return;
 
+void Foam::spemModel::constrainElements()
+{
     // Two slip walls meeting at more than this angle make a corner
     std::vector<elementModel::constraint> c;
     std::vector<scalar> normal;
@@ -141,7 +144,6 @@ void Foam::spemModel::readGravity()
     }
     g_[0] = g.value().x();
     g_[1] = g.value().y();
-    if (elements_) elements_->setGravity(g_[0], g_[1]);
 }
 
 
@@ -444,7 +446,11 @@ bool Foam::spemModel::readParticleState
 }
 
 
-void Foam::spemModel::buildParticles(const PtrList<spemMaterial>& materials)
+void Foam::spemModel::buildParticles
+(
+    const PtrList<spemMaterial>& materials,
+    const std::vector<scalar>& density
+)
 {
     // The fluid regions: one fluid for the particles
     std::vector<label> fluidElements;
@@ -494,7 +500,7 @@ void Foam::spemModel::buildParticles(const PtrList<spemMaterial>& materials)
         const scalar* c = &x[2*tri[3*t + 2]];
         const scalar area =
             0.5*mag((b[0] - a[0])*(c[1] - a[1]) - (b[1] - a[1])*(c[0] - a[0]));
-        elementMass[t] = fluid->rho()*area;
+        elementMass[t] = density[t]*area;
         areaSum += area;
     }
     const sphFluid::controls ctrl = sphFluid::controls::read(schemes_);
@@ -652,25 +658,35 @@ Foam::spemModel::spemModel(const Time& runTime)
             << "massProportional must not be negative" << exit(FatalIOError);
     }
 
+    if (method_ == methodType::SPEM && hasVoid)
+    {
+        FatalIOErrorInFunction(*this)
+            << "Regions with model void (empty space) need method SPH"
+            << " in this version" << exit(FatalIOError);
+    }
+    readBoundaries();
+    readGravity();
+    // The state at t = 0 (a restart then overwrites what it stores)
+    const std::vector<scalar> density =
+        initialDensity
+        (
+            mesh_, patchTypes_, materials, subDict("regions"), g_[0], g_[1]
+        );
+
     if (method_ == methodType::SPEM)
     {
-        if (hasVoid)
-        {
-            FatalIOErrorInFunction(*this)
-                << "Regions with model void (empty space) need method SPH"
-                << " in this version" << exit(FatalIOError);
-        }
-        elements_.reset(new elementModel(mesh_, std::move(materials)));
-        readBoundaries();
-        readGravity();
+        elements_.reset
+        (
+            new elementModel(mesh_, std::move(materials), density)
+        );
+        constrainElements();
+        elements_->setGravity(g_[0], g_[1]);
         elements_->setMassDamping(alpha);
         readState();
     }
     else
     {
-        readBoundaries();
-        readGravity();
-        buildParticles(materials);
+        buildParticles(materials, density);
         particles_->setMassDamping(alpha);
     }
 

@@ -13,6 +13,27 @@ namespace Foam
 }
 
 
+namespace
+{
+
+// initialPressure: zero (default) or hydrostatic
+bool readHydrostaticStart(const Foam::word& name, const Foam::dictionary& dict)
+{
+    using namespace Foam;
+    const word start = dict.getOrDefault<word>("initialPressure", "zero");
+    if (start != "zero" && start != "hydrostatic")
+    {
+        FatalIOErrorInFunction(dict)
+            << "Entry 'initialPressure " << start << "' of region " << name
+            << ": expected zero (the default) or hydrostatic"
+            << exit(FatalIOError);
+    }
+    return start == "hydrostatic";
+}
+
+} // End anonymous namespace
+
+
 Foam::weaklyCompressibleNewtonian::weaklyCompressibleNewtonian
 (
     const word& name,
@@ -21,7 +42,8 @@ Foam::weaklyCompressibleNewtonian::weaklyCompressibleNewtonian
 :
     spemMaterial(name, dict),
     c_(readPositive("c")),
-    mu_(dict.getOrDefault<scalar>("mu", 0))
+    mu_(dict.getOrDefault<scalar>("mu", 0)),
+    hydrostaticStart_(readHydrostaticStart(name, dict))
 {
     if (mu_ < 0)
     {

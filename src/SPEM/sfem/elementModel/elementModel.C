@@ -65,7 +65,11 @@ inline void areaGradient
 
 // * * * * * * * * * * * * * Private Member Functions  * * * * * * * * * * * //
 
-void Foam::elementModel::build(const triMesh& mesh)
+void Foam::elementModel::build
+(
+    const triMesh& mesh,
+    const std::vector<scalar>& density
+)
 {
     const label nTri = mesh.nTriangles();
     const label nReg = mesh.nRegions();
@@ -180,12 +184,18 @@ void Foam::elementModel::build(const triMesh& mesh)
     domainStress_.assign(4*nDom, 0);
     solidTimeScale_ = std::numeric_limits<scalar>::max();
 
+    // Initial density of an element: from initialDensity or rho0
+    const auto rhoOf = [&](const label el, const scalar rho0)
+    {
+        return density.empty() ? rho0 : density[elemTriangle_[el]];
+    };
     for (label r = 0; r < nReg; ++r)
     {
         const spemMaterial& mat = materials_[r];
-        const scalar rho = mat.rho();
+        const scalar rho0 = mat.rho();
         for (label el = regions_[r].elemBegin; el < regions_[r].elemEnd; ++el)
         {
+            const scalar rho = rhoOf(el, rho0);
             const label* n = &elemNodes_[3*el];
             scalar AgradN[6];
             const scalar A = triangleAreaGradN
@@ -202,10 +212,15 @@ void Foam::elementModel::build(const triMesh& mesh)
         }
         for (label k = regions_[r].domainBegin; k < regions_[r].domainEnd; ++k)
         {
-            scalar A = elemArea_[domainElems_[2*k]];
-            if (domainElems_[2*k + 1] >= 0) A += elemArea_[domainElems_[2*k + 1]];
+            const label e0 = domainElems_[2*k], e1 = domainElems_[2*k + 1];
+            scalar A = elemArea_[e0], m = rhoOf(e0, rho0)*elemArea_[e0];
+            if (e1 >= 0)
+            {
+                A += elemArea_[e1];
+                m += rhoOf(e1, rho0)*elemArea_[e1];
+            }
             domainArea_[k] = A/3;
-            domainMass_[k] = rho*A/3;
+            domainMass_[k] = m/3;
         }
     }
 }
@@ -375,7 +390,8 @@ void Foam::elementModel::forcePass()
 Foam::elementModel::elementModel
 (
     const triMesh& mesh,
-    PtrList<spemMaterial>&& materials
+    PtrList<spemMaterial>&& materials,
+    const std::vector<scalar>& density
 )
 :
     materials_(std::move(materials)),
@@ -392,7 +408,13 @@ Foam::elementModel::elementModel
     solidTimeScale_(0),
     stableDeltaT_(0)
 {
-    build(mesh);
+    if (!density.empty() && label(density.size()) != mesh.nTriangles())
+    {
+        FatalErrorInFunction
+            << density.size() << " initial densities for "
+            << mesh.nTriangles() << " triangles" << exit(FatalError);
+    }
+    build(mesh, density);
 }
 
 
