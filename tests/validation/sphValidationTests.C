@@ -3,11 +3,12 @@ Description
     Validation of the particle half (method SPH) on the tutorials, run as a
     user runs them (blockMesh, spemMeshConvert, spemFoam) on a copy of the
     case at a coarse resolution:
-      - hydrostaticTank (nx 20, 800 particles, settled with the tutorial's
-        damping for 2 s): the pressure gradient of the particles within 2 %
-        of rho g and the bottom band's mean pressure within 2 % of
-        rho g (H - y); every particle kept and inside the tank at every
-        written time;
+      - hydrostaticTank (nx 20, 800 particles, started hydrostatic and
+        kept 2 s with the tutorial's damping): the pressure gradient of the
+        particles within 2 % of rho g, the bottom band's mean pressure
+        within 2 % of rho g (H - y), every band's within 2 % of the
+        hydrostatic scale rho g H; every particle kept and inside the tank
+        at every written time;
       - damBreak (nx 20, 1600 particles, up to the front reaching the far
         wall): the surge front against Martin and Moyce (1952) and
         Koshizuka and Oka (1996), every particle inside the tank.
@@ -137,7 +138,7 @@ std::vector<std::vector<double>> readTable(const fs::path& file)
 } // End anonymous namespace
 
 
-TEST(SphValidation, hydrostaticTankPressureGradientAndBottomPressureWithinTwoPercent)
+TEST(SphValidation, hydrostaticTankPressureWithinTwoPercent)
 {
     const fs::path caseDir = copyTutorial("hydrostaticTank", "spemHydrostaticTank");
     replaceEntry(caseDir/"system/blockMeshDict", "nx", "20");
@@ -159,7 +160,7 @@ TEST(SphValidation, hydrostaticTankPressureGradientAndBottomPressureWithinTwoPer
     // bands, away from the side walls, against rho g (H - y) at the bands'
     // mean height
     const int nBands = 10;
-    double bottomError = 0;
+    double bottomError = 0, largestOffset = 0;
     for (int b = 0; b < nBands; ++b)
     {
         const double y0 = b*H/nBands, y1 = y0 + H/nBands;
@@ -177,11 +178,14 @@ TEST(SphValidation, hydrostaticTankPressureGradientAndBottomPressureWithinTwoPer
         const double p = sumP/count, y = sumY/count;
         const double exact = rho0*g*(H - y);
         if (b == 0) bottomError = p/exact - 1;
+        largestOffset = std::max(largestOffset, std::abs(p - exact));
         std::printf
         (
             "hydrostaticTank nx 20, t = %s s: band at mean y = %.4f m:"
-            " p %.1f Pa, rho g (H - y) %.1f Pa, error %+.2f %% (%+.1f Pa)\n",
-            last.filename().c_str(), y, p, exact, 100*(p/exact - 1), p - exact
+            " p %.1f Pa, rho g (H - y) %.1f Pa, error %+.2f %% (%+.1f Pa,"
+            " %+.2f %% of rho g H)\n",
+            last.filename().c_str(), y, p, exact, 100*(p/exact - 1), p - exact,
+            100*(p - exact)/(rho0*g*H)
         );
     }
 
@@ -210,12 +214,14 @@ TEST(SphValidation, hydrostaticTankPressureGradientAndBottomPressureWithinTwoPer
     );
     EXPECT_LT(std::abs(slope/(-rho0*g) - 1), 0.02);
     EXPECT_LT(std::abs(bottomError), 0.02);
+    EXPECT_LT(largestOffset, 0.02*rho0*g*H);
 
-    // Not asserted (issue note): above mid-depth the pressure is 2-15 %
-    // below rho g (H - y), a nearly constant 60 Pa: the column sinks
-    // 5.6 mm (1.95 mm of it compressibility). The rows next to the walls
-    // move from 0.47 to 0.35-0.37 spacings from them by 0.3 s and back to
-    // 0.39-0.43 by 2 s; part of the offset is not explained yet
+    // Not asserted (issue note): relative to the local rho g (H - y) the
+    // upper bands are 2-10 % low, a nearly constant 44 Pa: the free surface
+    // settles 0.2 particle spacings (3.5 mm) lower within 0.1 s, as the rows
+    // of element barycentres (1/3 and 2/3 of each cell) even out to rows
+    // s/2 apart and the rows next to the walls move from 0.47 to 0.35
+    // spacings from them
     if (!HasFailure()) fs::remove_all(caseDir);
 }
 

@@ -12,7 +12,8 @@ Reads
     lists of the fluid particles: a count, then '(' one entry per line ')',
     or the uniform form count{value}), and 0/spem/particlePositions for the
     initial height of the column;
-  - rho0 and c of the region water in constant/spemProperties, g from
+  - rho0, c and initialPressure of the region water in
+    constant/spemProperties, g from
     constant/g and the water height H (= W) from system/blockMeshDict. The
     constants below are used where a value cannot be read.
 
@@ -22,6 +23,8 @@ The band table also lists the hydrostatic pressure of the same column made
 of the weakly compressible fluid, density rho0 + p/c^2 and the same mass:
     p_wc(y) = rho0 c^2 (exp(g (H' - y)/c^2) - 1),
     H' = (c^2/g) ln(1 + g H/c^2)   (the compressed column's height),
+or H' = H for a column started hydrostatic (initialPressure hydrostatic:
+the mesh holds the compressed column, its mass is that much larger),
 which is what the model can reach at most; the difference between the two
 is the fluid's compressibility, not an error of the discretisation.
 
@@ -80,8 +83,10 @@ def readText(relPath):
 
 
 def readCaseConstants():
-    """Return rho0, c, g, H and a list of notes on what was not read."""
+    """Return rho0, c, g, H, whether the water starts hydrostatic and a
+    list of notes on what was not read."""
     notes = []
+    hydrostaticStart = False
     rho0, c, g, H = defaultRho0, defaultC, defaultG, defaultH
 
     text = readText(os.path.join("constant", "spemProperties"))
@@ -94,6 +99,8 @@ def readCaseConstants():
             rho0 = float(mr.group(1))
         else:
             notes.append("rho of water not found, rho0 = %g" % rho0)
+        hydrostaticStart = bool(
+            re.search(r"\binitialPressure\s+hydrostatic\s*;", block))
         if mc:
             c = float(mc.group(1))
         else:
@@ -117,7 +124,7 @@ def readCaseConstants():
     else:
         notes.append("W not found in system/blockMeshDict, H = %g" % H)
 
-    return rho0, c, g, H, notes
+    return rho0, c, g, H, hydrostaticStart, notes
 
 
 def readProbes():
@@ -184,7 +191,7 @@ def latestTime():
 
 
 def main():
-    rho0, c, g, H, notes = readCaseConstants()
+    rho0, c, g, H, hydrostaticStart, notes = readCaseConstants()
     probeY, times, probeP = readProbes()
     tLast = latestTime()
     positions = readFoamList(os.path.join(caseDir, tLast, "spem",
@@ -200,14 +207,17 @@ def main():
     def hydrostatic(yy):
         return rho0*g*(H - yy)
 
-    # The same column, weakly compressible: rho = rho0 + p/c^2
-    Hc = c*c/g*math.log(1.0 + g*H/(c*c))
+    # The same column, weakly compressible: rho = rho0 + p/c^2; started
+    # hydrostatic, the mesh already holds the compressed column
+    Hc = H if hydrostaticStart else c*c/g*math.log(1.0 + g*H/(c*c))
 
     def compressible(yy):
         return rho0*c*c*(math.exp(g*max(Hc - yy, 0.0)/(c*c)) - 1.0)
 
     print("case      : %s" % caseDir)
-    print("rho0 = %g kg/m3, c = %g m/s, g = %g m/s2, H = %g m" % (rho0, c, g, H))
+    print("rho0 = %g kg/m3, c = %g m/s, g = %g m/s2, H = %g m, initialPressure"
+          " %s" % (rho0, c, g, H,
+                   "hydrostatic" if hydrostaticStart else "zero"))
     for note in notes:
         print("note      : %s" % note)
 
@@ -273,12 +283,12 @@ def main():
             print("        highest particle %.5f m at t = 0, %.5f m "
                   "(%+.2f mm)"
                   % (max(y0), max(y), 1e3*(max(y) - max(y0))))
-            # A weakly compressible column at rest, density rho0 + p/c^2,
-            # is shorter: on average by about g H^2/(3 c^2), at the top by
-            # H - H'
+            # A weakly compressible column started at p = 0 settles
+            # shorter: on average by about g H^2/(3 c^2), at the top by
+            # H - H'; started hydrostatic it has no reason to move
+            sink = 0.0 if hydrostaticStart else -1e3*g*H*H/(3*c*c)
             print("        weak compressibility alone: %+.2f mm on average,"
-                  " %+.2f mm at the top"
-                  % (-1e3*g*H*H/(3*c*c), -1e3*(H - Hc)))
+                  " %+.2f mm at the top" % (sink, -1e3*(H - Hc)))
 
     # Imported here so that a missing result is reported before a missing
     # matplotlib (Debian: apt-get install python3-matplotlib)
