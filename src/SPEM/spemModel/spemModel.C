@@ -495,11 +495,7 @@ void Foam::spemModel::buildParticles
     scalar areaSum = 0;
     for (const label t : fluidElements)
     {
-        const scalar* a = &x[2*tri[3*t]];
-        const scalar* b = &x[2*tri[3*t + 1]];
-        const scalar* c = &x[2*tri[3*t + 2]];
-        const scalar area =
-            0.5*mag((b[0] - a[0])*(c[1] - a[1]) - (b[1] - a[1])*(c[0] - a[0]));
+        const scalar area = mesh_.triangleArea(t);
         elementMass[t] = density[t]*area;
         areaSum += area;
     }
