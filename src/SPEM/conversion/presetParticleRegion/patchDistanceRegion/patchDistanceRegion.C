@@ -1,0 +1,92 @@
+#include "patchDistanceRegion.H"
+#include "checkKeywords.H"
+#include "triMesh.H"
+#include "addToRunTimeSelectionTable.H"
+
+#include <algorithm>
+
+namespace Foam
+{
+    defineTypeNameAndDebug(patchDistanceRegion, 0);
+    addToRunTimeSelectionTable
+    (
+        presetParticleRegion,
+        patchDistanceRegion,
+        dictionary
+    );
+}
+
+
+Foam::patchDistanceRegion::patchDistanceRegion
+(
+    const word& name,
+    const dictionary& dict,
+    const triMesh& mesh
+)
+:
+    presetParticleRegion(name)
+{
+    checkKeywords(dict, {"type", "patches", "distance"});
+
+    const wordList patches(dict.get<wordList>("patches"));
+    if (patches.empty())
+    {
+        FatalIOErrorInFunction(dict)
+            << "Entry 'patches' of " << dict.name() << " is empty. Mesh"
+            << " patches: " << mesh.patchNames() << exit(FatalIOError);
+    }
+
+    std::vector<bool> selected(mesh.nPatches(), false);
+    for (const word& patch : patches)
+    {
+        const label patchi = mesh.findPatch(patch);
+        if (patchi < 0)
+        {
+            FatalIOErrorInFunction(dict)
+                << "Unknown patch " << patch << " in entry 'patches' of "
+                << dict.name() << ". Mesh patches: " << mesh.patchNames()
+                << exit(FatalIOError);
+        }
+        selected[patchi] = true;
+    }
+
+    distance_ = readPositive(dict, "distance");
+
+    const std::vector<scalar>& points = mesh.points();
+    for (label s = 0; s < mesh.nSegments(); ++s)
+    {
+        if (!selected[mesh.segmentPatch()[s]]) continue;
+        const label a = mesh.segments()[2*s], b = mesh.segments()[2*s + 1];
+        segments_.insert
+        (
+            segments_.end(),
+            {points[2*a], points[2*a + 1], points[2*b], points[2*b + 1]}
+        );
+    }
+}
+
+
+bool Foam::patchDistanceRegion::contains(const scalar x, const scalar y) const
+{
+    const scalar distance2 = distance_*distance_;
+    const label n = nSegments();
+    for (label s = 0; s < n; ++s)
+    {
+        const scalar* seg = segments_.data() + 4*s;
+        const scalar ex = seg[2] - seg[0], ey = seg[3] - seg[1];
+        const scalar px = x - seg[0], py = y - seg[1];
+
+        // Parameter of the closest point of the segment, clamped to it
+        const scalar length2 = ex*ex + ey*ey;
+        const scalar t =
+            length2 > 0
+          ? std::min(std::max((px*ex + py*ey)/length2, scalar(0)), scalar(1))
+          : scalar(0);
+        const scalar dx = px - t*ex, dy = py - t*ey;
+        if (dx*dx + dy*dy <= distance2)
+        {
+            return true;
+        }
+    }
+    return false;
+}
