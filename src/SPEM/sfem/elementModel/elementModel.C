@@ -65,16 +65,13 @@ inline void areaGradient
 
 // * * * * * * * * * * * * * Private Member Functions  * * * * * * * * * * * //
 
-void Foam::elementModel::build
-(
-    const triMesh& mesh,
-    const std::vector<scalar>& density
-)
+void Foam::elementModel::build(const triMesh& mesh)
 {
-    const label nTri = mesh.nTriangles();
+    const label nMeshTri = mesh.nTriangles();
     const label nReg = mesh.nRegions();
     const std::vector<label>& tri = mesh.triangles();
     const std::vector<label>& triRegion = mesh.triangleRegion();
+    const std::vector<scalar>& density = initialDensity_;
 
     if (materials_.size() != nReg)
     {
@@ -83,15 +80,20 @@ void Foam::elementModel::build
             << " materials were given" << exit(FatalError);
     }
 
-    // Elements ordered by region (stable: keeps the mesh's locality)
-    elemTriangle_.resize(nTri);
-    std::iota(elemTriangle_.begin(), elemTriangle_.end(), 0);
+    // Elements: the triangles not removed, ordered by region (stable:
+    // keeps the mesh's locality)
+    elemTriangle_.clear();
+    for (label t = 0; t < nMeshTri; ++t)
+    {
+        if (!removedTriangle_[t]) elemTriangle_.push_back(t);
+    }
+    const label nTri = label(elemTriangle_.size());
     std::stable_sort
     (
         elemTriangle_.begin(), elemTriangle_.end(),
         [&](label a, label b) { return triRegion[a] < triRegion[b]; }
     );
-    std::vector<label> triElem(nTri);
+    std::vector<label> triElem(nMeshTri, -1);
     for (label e = 0; e < nTri; ++e) triElem[elemTriangle_[e]] = e;
 
     elemNodes_.resize(3*nTri);
@@ -112,7 +114,11 @@ void Foam::elementModel::build
     std::vector<std::vector<std::array<label, 3>>> regionDomains(nReg);
     for (label k = 0; k < nEdge; ++k)
     {
-        const label t0 = edgeTri[2*k], t1 = edgeTri[2*k + 1];
+        // A removed triangle is no neighbour: its edges bound the rest
+        label t0 = edgeTri[2*k], t1 = edgeTri[2*k + 1];
+        if (t1 >= 0 && triElem[t1] < 0) t1 = -1;
+        if (triElem[t0] < 0) std::swap(t0, t1);
+        if (t0 < 0 || triElem[t0] < 0) continue;
         if (t1 >= 0 && triRegion[t0] == triRegion[t1])
         {
             regionDomains[triRegion[t0]].push_back
@@ -175,6 +181,7 @@ void Foam::elementModel::build
 
     // Reference geometry, lumped masses, domain masses, solid time scale
     elemArea_.resize(nTri);
+    elemMass_.resize(nTri);
     elemAreaGrad_.assign(4*nTri, 0);
     elemForce_.assign(6*nTri, 0);
     nodeMass_.assign(nNodes_, 0);
@@ -191,6 +198,7 @@ void Foam::elementModel::build
     };
     for (label r = 0; r < nReg; ++r)
     {
+        if (!materials_.set(r)) continue;   // void: no elements
         const spemMaterial& mat = materials_[r];
         const scalar rho0 = mat.rho();
         for (label el = regions_[r].elemBegin; el < regions_[r].elemEnd; ++el)
@@ -203,6 +211,7 @@ void Foam::elementModel::build
                 &X_[2*n[0]], &X_[2*n[1]], &X_[2*n[2]], AgradN
             );
             elemArea_[el] = A;
+            elemMass_[el] = rho*A;
             for (label a = 0; a < 3; ++a) nodeMass_[n[a]] += rho*A/3;
             if (!mat.isFluid())
             {
@@ -213,11 +222,11 @@ void Foam::elementModel::build
         for (label k = regions_[r].domainBegin; k < regions_[r].domainEnd; ++k)
         {
             const label e0 = domainElems_[2*k], e1 = domainElems_[2*k + 1];
-            scalar A = elemArea_[e0], m = rhoOf(e0, rho0)*elemArea_[e0];
+            scalar A = elemArea_[e0], m = elemMass_[e0];
             if (e1 >= 0)
             {
                 A += elemArea_[e1];
-                m += rhoOf(e1, rho0)*elemArea_[e1];
+                m += elemMass_[e1];
             }
             domainArea_[k] = A/3;
             domainMass_[k] = m/3;
@@ -235,8 +244,11 @@ bool Foam::elementModel::elementPass()
 
     for (label r = 0; r < regions_.size(); ++r)
     {
+        if (!materials_.set(r)) continue;   // void: no elements
         const spemMaterial& mat = materials_[r];
         const label begin = regions_[r].elemBegin, end = regions_[r].elemEnd;
+        // A fluid region may have become particles entirely
+        if (begin == end) continue;
 
         if (mat.isFluid())
         {
@@ -307,6 +319,7 @@ bool Foam::elementModel::domainPass()
     bool ok = true;
     for (label r = 0; r < regions_.size(); ++r)
     {
+        if (!materials_.set(r)) continue;   // void: no elements
         const label begin = regions_[r].domainBegin, end = regions_[r].domainEnd;
         const bool fluid = materials_[r].isFluid();
 
@@ -352,6 +365,7 @@ void Foam::elementModel::forcePass()
 
     for (label r = 0; r < regions_.size(); ++r)
     {
+        if (!materials_.set(r)) continue;   // void: no elements
         // Current configuration for fluids, reference for solids
         const scalar* x =
             materials_[r].isFluid() ? x_[cur_].data() : X_.data();
@@ -414,7 +428,17 @@ Foam::elementModel::elementModel
             << density.size() << " initial densities for "
             << mesh.nTriangles() << " triangles" << exit(FatalError);
     }
-    build(mesh, density);
+    initialDensity_ = density;
+    // Triangles of void regions (empty space) are no elements
+    removedTriangle_.assign(mesh.nTriangles(), false);
+    for (label t = 0; t < mesh.nTriangles(); ++t)
+    {
+        removedTriangle_[t] =
+            materials_.size() == mesh.nRegions()
+         && !materials_.set(mesh.triangleRegion()[t]);
+    }
+    externalForce_.assign(2*nNodes_, 0);
+    build(mesh);
 }
 
 
@@ -492,12 +516,21 @@ bool Foam::elementModel::advance(const scalar dt)
     bool finite = true;
 
     scalar* reaction = nodeReaction_.data();
+    const scalar* external = externalForce_.data();
 
     // Performance critical: every node, every step
     #pragma omp parallel for schedule(static) reduction(&&: finite) if(nNodes_ > minParallelLoop)
     for (label n = 0; n < nNodes_; ++n)
     {
-        scalar f[2] = {0, 0};
+        // A node without elements (all became particles) stays where it is
+        if (nodeMass_[n] == 0)
+        {
+            vNew[2*n] = vNew[2*n + 1] = 0;
+            xNew[2*n] = x[2*n];
+            xNew[2*n + 1] = x[2*n + 1];
+            continue;
+        }
+        scalar f[2] = {external[2*n], external[2*n + 1]};
         for (label j = nodeElemStart_[n]; j < nodeElemStart_[n + 1]; ++j)
         {
             const label h = nodeElems_[j];
@@ -545,6 +578,56 @@ bool Foam::elementModel::advance(const scalar dt)
 }
 
 
+void Foam::elementModel::removeTriangles
+(
+    const triMesh& mesh,
+    const std::vector<label>& triangles
+)
+{
+    if (mesh.nTriangles() != label(removedTriangle_.size()))
+    {
+        FatalErrorInFunction
+            << "removeTriangles needs the mesh of construction"
+            << exit(FatalError);
+    }
+    for (const label t : triangles)
+    {
+        if (t < 0 || t >= mesh.nTriangles() || removedTriangle_[t])
+        {
+            FatalErrorInFunction
+                << "Triangle " << t << " is not an element of the model"
+                << exit(FatalError);
+        }
+        removedTriangle_[t] = true;
+    }
+    build(mesh);
+
+    // Nodes without elements rest: no mass, no momentum
+    for (int b = 0; b < 2; ++b)
+    {
+        for (label n = 0; n < nNodes_; ++n)
+        {
+            if (nodeMass_[n] == 0) v_[b][2*n] = v_[b][2*n + 1] = 0;
+        }
+    }
+}
+
+
+void Foam::elementModel::correctVelocity
+(
+    const label n,
+    const scalar du,
+    const scalar dv,
+    const scalar dt
+)
+{
+    v_[cur_][2*n] += du;
+    v_[cur_][2*n + 1] += dv;
+    x_[cur_][2*n] += dt*du;
+    x_[cur_][2*n + 1] += dt*dv;
+}
+
+
 std::vector<Foam::scalar> Foam::elementModel::nodalForces() const
 {
     std::vector<scalar> f(2*nNodes_, 0);
@@ -567,6 +650,7 @@ void Foam::elementModel::domainCauchyStress
 {
     for (label r = 0; r < regions_.size(); ++r)
     {
+        if (!materials_.set(r)) continue;   // void: no elements
         const label b = std::max(begin, regions_[r].domainBegin);
         const label e = std::min(end, regions_[r].domainEnd);
         if (b >= e) continue;
@@ -586,6 +670,7 @@ Foam::elementModel::elementFields Foam::elementModel::fields() const
     domainCauchyStress(0, nDom, sigma.data(), p.data());
     for (label r = 0; r < regions_.size(); ++r)
     {
+        if (!materials_.set(r)) continue;   // void: no elements
         const label b = regions_[r].domainBegin, e = regions_[r].domainEnd;
         materials_[r].density
         (
@@ -673,6 +758,7 @@ Foam::scalar Foam::elementModel::strainEnergy() const
     std::vector<scalar> w;
     for (label r = 0; r < regions_.size(); ++r)
     {
+        if (!materials_.set(r)) continue;   // void: no elements
         const label b = regions_[r].domainBegin, e = regions_[r].domainEnd;
         w.resize(e - b);
         materials_[r].strainEnergyDensity(b, e, domainGrad_.data(), w.data());
