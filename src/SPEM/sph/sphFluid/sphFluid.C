@@ -107,11 +107,15 @@ Foam::sphFluid::sphFluid
     particles_(std::move(particles)),
     nFluid_(0),
     nWall_(0),
+    nGhost_(0),
+    nextId_(0),
+    freshIdBegin_(0),
     massDamping_(0),
     pendingDeltaT_(0),
     stepsSinceReorder_(reorderInterval),
     stableDeltaT_(GREAT),
-    wallForce_{0, 0}
+    wallForce_{0, 0},
+    ghostForce_{0, 0}
 {
     for (const particleSet::kind k : particles_.kinds())
     {
@@ -120,21 +124,19 @@ Foam::sphFluid::sphFluid
         else
         {
             FatalErrorInFunction
-                << "Ghost particles belong to the element-particle coupling,"
-                << " not to a pure particle fluid" << exit(FatalError);
+                << "Ghost particles are set by setGhosts(), not given at"
+                << " construction" << exit(FatalError);
         }
     }
+    for (const label id : particles_.id()) nextId_ = std::max(nextId_, id + 1);
+    freshIdBegin_ = nextId_;
     for (int k = 0; k < 2; ++k)
     {
         boxMin_[k] = boxMin[k];
         boxMax_[k] = boxMax[k];
     }
 
-    const label n = particles_.size();
-    acceleration_.assign(2*n, 0);
-    correction_.assign(3*n, 0);
-    gradC_.assign(2*n, 0);
-    divR_.assign(n, 2);
+    resizeFields();
     oldPosition_ = particles_.positions();
     oldVelocity_ = particles_.velocities();
     oldDensity_ = particles_.density();
@@ -195,6 +197,16 @@ void Foam::sphFluid::reorder()
 }
 
 
+void Foam::sphFluid::resizeFields()
+{
+    const label n = particles_.size();
+    acceleration_.resize(2*n, 0);
+    correction_.resize(3*n, 0);
+    gradC_.resize(2*n, 0);
+    divR_.resize(n, 2);
+}
+
+
 template<class Kernel>
 void Foam::sphFluid::densityPass(const Kernel&)
 {
@@ -204,6 +216,8 @@ void Foam::sphFluid::densityPass(const Kernel&)
     const scalar* __restrict__ m = particles_.mass().data();
     const scalar* __restrict__ h = particles_.smoothingLength().data();
     const particleSet::kind* __restrict__ kind = particles_.kinds().data();
+    const label* __restrict__ id = particles_.id().data();
+    const label freshIdBegin = freshIdBegin_;
     scalar* __restrict__ rho = particles_.density().data();
     scalar* __restrict__ p = particles_.pressure().data();
     scalar* __restrict__ C = correction_.data();
@@ -243,9 +257,12 @@ void Foam::sphFluid::densityPass(const Kernel&)
                 // grad_i W_ij = (x_i - x_j) F
                 const scalar gx = dx*F, gy = dy*F;
                 // Volumes of the start of the step; a wall particle's is
-                // its fixed lattice cell
+                // its fixed lattice cell, a ghost's its element's area
                 const bool fluidj = kind[j] == particleSet::kind::fluid;
-                const scalar Vj = m[j]/(fluidj ? rhoOld[j] : rho0);
+                const bool ghostj = kind[j] == particleSet::kind::ghost;
+                const scalar rhoj =
+                    fluidj ? rhoOld[j] : (ghostj ? rho[j] : rho0);
+                const scalar Vj = m[j]/rhoj;
 
                 // Moments sum (x_j - x_i) (x) grad_i W V_j
                 Mxx -= dx*gx*Vj;
@@ -255,23 +272,24 @@ void Foam::sphFluid::densityPass(const Kernel&)
                 gCy += gy*Vj;
                 div -= (dx*gx + dy*gy)*Vj;
 
-                // Continuity: m_j v_ij (x) grad_i W. A wall particle's
-                // velocity field holds the mirrored velocity of the viscous
-                // term; the wall itself is at rest.
-                const scalar wx = m[j]*(vxi - (fluidj ? v[2*j] : 0));
-                const scalar wy = m[j]*(vyi - (fluidj ? v[2*j + 1] : 0));
+                // Continuity: m_j v_ij (x) grad_i W (eqs. 16, 23). A wall
+                // particle's velocity field holds the mirrored velocity of
+                // the viscous term; the wall itself is at rest.
+                const bool moving = fluidj || ghostj;
+                const scalar wx = m[j]*(vxi - (moving ? v[2*j] : 0));
+                const scalar wy = m[j]*(vyi - (moving ? v[2*j + 1] : 0));
                 Sxx += wx*gx;
                 Sxy += wx*gy;
                 Syx += wy*gx;
                 Syy += wy*gy;
 
-                // Density diffusion between fluid particles, hydrostatic
-                // part removed; psi_ij . grad_i W = -2 drho F (x_j - x_i =
-                // -(dx, dy))
-                if (fluidj)
+                // Density diffusion between fluid particles (ghosts are
+                // fluid), hydrostatic part removed; psi_ij . grad_i W =
+                // -2 drho F (x_j - x_i = -(dx, dy))
+                if (moving)
                 {
                     const scalar dRho =
-                        (rhoOld[j] - rhoi) + (hx*dx + hy*dy);
+                        (rhoj - rhoi) + (hx*dx + hy*dy);
                     diffusion -= 2*dRho*F*Vj*hij;
                 }
             }
@@ -291,10 +309,10 @@ void Foam::sphFluid::densityPass(const Kernel&)
         // Eq. (16): drho/dt = sum m_j v_ij . C_i grad_i W_ij
         const scalar drho =
             cxx*Sxx + cxy*(Sxy + Syx) + cyy*Syy + delta*c*diffusion;
-        // No step pending (start, restart, re-evaluation): the density
-        // stays
+        // No step pending (start, restart, re-evaluation, or a particle
+        // appended since the step): the density stays
         scalar rhoNew = rho[i];
-        if (dt > 0)
+        if (dt > 0 && id[i] < freshIdBegin)
         {
             rhoNew = rhoi + dt*drho;
             // Free surface: the fluid cannot pull on the air, so a surface
@@ -332,7 +350,15 @@ void Foam::sphFluid::wallPass(const Kernel&)
             particles_, w, kappa,
             [&](const label f, const scalar dx, const scalar dy, const scalar r)
             {
-                if (kind[f] != particleSet::kind::fluid) return;
+                // The fluid: particles and the elements' ghosts
+                if
+                (
+                    kind[f] != particleSet::kind::fluid
+                 && kind[f] != particleSet::kind::ghost
+                )
+                {
+                    return;
+                }
                 const scalar W = Kernel::W(r, 0.5*(h[w] + h[f]));
                 sumW += W;
                 sumP += p[f]*W;
@@ -383,10 +409,10 @@ void Foam::sphFluid::momentumPass(const Kernel&)
 
     const scalar mu = mu_, gx = gx_, gy = gy_, c = c_;
     const scalar nu = mu_/rho0_;
-    scalar fwx = 0, fwy = 0, dtMin = GREAT;
+    scalar fwx = 0, fwy = 0, fgx = 0, fgy = 0, dtMin = GREAT;
 
     // Performance critical: every fluid particle, every step.
-    #pragma omp parallel for schedule(static) reduction(+: fwx, fwy) reduction(min: dtMin) if(n > minParallelLoop)
+    #pragma omp parallel for schedule(static) reduction(+: fwx, fwy, fgx, fgy) reduction(min: dtMin) if(n > minParallelLoop)
     for (label i = 0; i < n; ++i)
     {
         if (kind[i] != particleSet::kind::fluid)
@@ -400,7 +426,7 @@ void Foam::sphFluid::momentumPass(const Kernel&)
         const scalar rhoi = rho[i], pi = p[i];
         const scalar pri = pi/(rhoi*rhoi);
         const scalar cxx = C[3*i], cxy = C[3*i + 1], cyy = C[3*i + 2];
-        scalar ax = 0, ay = 0, wx = 0, wy = 0;
+        scalar ax = 0, ay = 0, wx = 0, wy = 0, gfx = 0, gfy = 0;
 
         cells_.forEachNeighbour
         (
@@ -438,10 +464,15 @@ void Foam::sphFluid::momentumPass(const Kernel&)
 
                 ax += fx;
                 ay += fy;
-                if (wall)
+                if (particleSet::isWall(kind[j]))
                 {
                     wx += fx;
                     wy += fy;
+                }
+                else if (kind[j] == particleSet::kind::ghost)
+                {
+                    gfx += fx;
+                    gfy += fy;
                 }
             }
         );
@@ -451,6 +482,8 @@ void Foam::sphFluid::momentumPass(const Kernel&)
         // Force of the fluid on the walls: minus the walls' force on it
         fwx -= m[i]*wx;
         fwy -= m[i]*wy;
+        fgx -= m[i]*gfx;
+        fgy -= m[i]*gfy;
 
         // Stable step of this particle at Courant number 1
         const scalar speed = std::sqrt(vxi*vxi + vyi*vyi);
@@ -463,6 +496,8 @@ void Foam::sphFluid::momentumPass(const Kernel&)
 
     wallForce_[0] = fwx;
     wallForce_[1] = fwy;
+    ghostForce_[0] = fgx;
+    ghostForce_[1] = fgy;
     stableDeltaT_ = dtMin;
 }
 
@@ -484,6 +519,7 @@ bool Foam::sphFluid::evaluate()
 
     kernel_->visit([this](const auto& k) { densityPass(k); });
     pendingDeltaT_ = 0;
+    freshIdBegin_ = nextId_;
     kernel_->visit([this](const auto& k) { wallPass(k); });
     kernel_->visit([this](const auto& k) { momentumPass(k); });
 
@@ -562,6 +598,113 @@ bool Foam::sphFluid::advance(const scalar dt)
     }
     pendingDeltaT_ = dt;
     return true;
+}
+
+
+void Foam::sphFluid::appendFluid(const particleSet& newParticles)
+{
+    const label n = newParticles.size();
+    for (label k = 0; k < n; ++k)
+    {
+        const scalar* x = &newParticles.positions()[2*k];
+        const scalar* v = &newParticles.velocities()[2*k];
+        const label i = particles_.append
+        (
+            x[0], x[1], v[0], v[1], newParticles.density()[k],
+            newParticles.pressure()[k], newParticles.mass()[k],
+            newParticles.smoothingLength()[k], particleSet::kind::fluid,
+            newParticles.level()[k]
+        );
+        particles_.id()[i] = nextId_++;
+        oldPosition_.push_back(x[0]);
+        oldPosition_.push_back(x[1]);
+        oldVelocity_.push_back(v[0]);
+        oldVelocity_.push_back(v[1]);
+        oldDensity_.push_back(newParticles.density()[k]);
+    }
+    nFluid_ += n;
+    resizeFields();
+}
+
+
+void Foam::sphFluid::setGhosts
+(
+    const label n,
+    const scalar* x,
+    const scalar* v,
+    const scalar* rho,
+    const scalar* m,
+    const scalar* h
+)
+{
+    // Drop the old ghosts: a stable compaction of every per-particle field
+    // that outlives a step (memory is kept, nothing is allocated)
+    if (nGhost_ > 0)
+    {
+        const label nOld = particles_.size();
+        std::vector<scalar>& px = particles_.positions();
+        std::vector<scalar>& pv = particles_.velocities();
+        std::vector<scalar>& prho = particles_.density();
+        std::vector<scalar>& pp = particles_.pressure();
+        std::vector<scalar>& pm = particles_.mass();
+        std::vector<scalar>& ph = particles_.smoothingLength();
+        std::vector<particleSet::kind>& pk = particles_.kinds();
+        std::vector<unsigned char>& pl = particles_.level();
+        std::vector<label>& pid = particles_.id();
+        label k = 0;
+        for (label i = 0; i < nOld; ++i)
+        {
+            if (pk[i] == particleSet::kind::ghost) continue;
+            if (k != i)
+            {
+                for (int c = 0; c < 2; ++c)
+                {
+                    px[2*k + c] = px[2*i + c];
+                    pv[2*k + c] = pv[2*i + c];
+                    oldPosition_[2*k + c] = oldPosition_[2*i + c];
+                    oldVelocity_[2*k + c] = oldVelocity_[2*i + c];
+                }
+                prho[k] = prho[i];
+                pp[k] = pp[i];
+                pm[k] = pm[i];
+                ph[k] = ph[i];
+                pk[k] = pk[i];
+                pl[k] = pl[i];
+                pid[k] = pid[i];
+                oldDensity_[k] = oldDensity_[i];
+            }
+            ++k;
+        }
+        particles_.resize(k);
+    }
+
+    const label first = particles_.size();
+    particles_.resize(first + n);
+    oldPosition_.resize(2*(first + n));
+    oldVelocity_.resize(2*(first + n));
+    oldDensity_.resize(first + n);
+    const scalar c2 = c_*c_;
+    for (label g = 0; g < n; ++g)
+    {
+        const label i = first + g;
+        for (int c = 0; c < 2; ++c)
+        {
+            particles_.positions()[2*i + c] = x[2*g + c];
+            particles_.velocities()[2*i + c] = v[2*g + c];
+            oldPosition_[2*i + c] = x[2*g + c];
+            oldVelocity_[2*i + c] = v[2*g + c];
+        }
+        particles_.density()[i] = rho[g];
+        oldDensity_[i] = rho[g];
+        // Eq. (7), as the element's pressure
+        particles_.pressure()[i] = c2*(rho[g] - rho0_);
+        particles_.mass()[i] = m[g];
+        particles_.smoothingLength()[i] = h[g];
+        particles_.kinds()[i] = particleSet::kind::ghost;
+        particles_.id()[i] = -1;
+    }
+    nGhost_ = n;
+    resizeFields();
 }
 
 
