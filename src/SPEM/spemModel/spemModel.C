@@ -10,6 +10,7 @@
 #include "wallParticles.H"
 #include "weaklyCompressibleNewtonian.H"
 #include "scalarIOField.H"
+#include "labelIOList.H"
 
 #include <algorithm>
 #include <cmath>
@@ -188,6 +189,21 @@ void Foam::spemModel::writeState() const
     if (particles_) writeParticleState();
     if (!elements_) return;
 
+    if (!convertedTriangles_.empty())
+    {
+        labelIOList converted
+        (
+            IOobject
+            (
+                "convertedTriangles", runTime_.timeName(), "spem", runTime_,
+                IOobject::NO_READ, IOobject::NO_WRITE, false
+            ),
+            label(convertedTriangles_.size())
+        );
+        forAll(converted, i) converted[i] = convertedTriangles_[i];
+        converted.write();
+    }
+
     const std::vector<scalar>& x = elements_->positions();
     const std::vector<scalar>& v = elements_->velocities();
     const label n = elements_->nNodes();
@@ -271,6 +287,8 @@ void Foam::spemModel::writeVTK()
         const particleSet& ps = sph.particles();
         for (label i = 0; i < ps.size(); ++i)
         {
+            // Ghosts are the elements' state, which the elements show
+            if (ps.kinds()[i] == particleSet::kind::ghost) continue;
             gathered& g =
                 ps.kinds()[i] == particleSet::kind::fluid ? fluid : wall;
             g.x.push_back(ps.positions()[2*i]);
@@ -523,10 +541,29 @@ void Foam::spemModel::buildParticles
         );
     }
     const label nFluid = ps.size();
+    createParticleHalf
+    (
+        std::move(ps), std::move(rhoOld), *fluid,
+        std::sqrt(areaSum/fluidElements.size())
+    );
+    Info<< "Particles (method SPH): " << nFluid << " fluid particles from "
+        << fluidElements.size() << " fluid elements" << nl;
+}
+
+
+void Foam::spemModel::createParticleHalf
+(
+    particleSet&& ps,
+    std::vector<scalar>&& rhoOld,
+    const weaklyCompressibleNewtonian& fluid,
+    const scalar spacing
+)
+{
+    const sphFluid::controls ctrl = sphFluid::controls::read(schemes_);
+    const std::vector<scalar>& x = mesh_.points();
 
     // Walls: dummy particles at the mean spacing of the fluid particles,
     // enough layers to fill the kernel support
-    const scalar spacing = std::sqrt(areaSum/fluidElements.size());
     const scalar h = ctrl.smoothingLengthRatio*spacing;
     const scalar kappa = sphKernel::New(schemes_)->support();
     const label layers =
@@ -536,7 +573,7 @@ void Foam::spemModel::buildParticles
     const label nWall =
         appendWallParticles
         (
-            mesh_, patchTypes_, spacing, layers, fluid->rho(), h, ps
+            mesh_, patchTypes_, spacing, layers, fluid.rho(), h, ps
         );
 
     // Lost particles: beyond the mesh's bounding box enlarged by
@@ -566,8 +603,8 @@ void Foam::spemModel::buildParticles
     (
         new sphFluid
         (
-            schemes_, std::move(ps), fluid->rho(), fluid->c(),
-            fluid->rho()*fluid->kinematicViscosity(), g_[0], g_[1],
+            schemes_, std::move(ps), fluid.rho(), fluid.c(),
+            fluid.rho()*fluid.kinematicViscosity(), g_[0], g_[1],
             boxMin, boxMax
         )
     );
@@ -575,14 +612,13 @@ void Foam::spemModel::buildParticles
     if (!rhoOld.empty())
     {
         // Restart: the fluid particles come first; walls start at rho0
-        rhoOld.resize(particles_->particles().size(), fluid->rho());
+        rhoOld.resize(particles_->particles().size(), fluid.rho());
         particles_->setOldDensity(rhoOld);
     }
 
     const sphFluid::controls& c = particles_->schemeControls();
-    Info<< "Particles (method SPH): " << nFluid << " fluid particles from "
-        << fluidElements.size() << " fluid elements, " << nWall
-        << " wall particles in " << layers << " layers" << nl
+    Info<< "Particle half: " << nWall << " wall particles in " << layers
+        << " layers" << nl
         << "    spacing " << spacing << " m, h " << h << " m, kernel "
         << particles_->kernel().type() << nl
         << "    gradientCorrection "
@@ -590,6 +626,172 @@ void Foam::spemModel::buildParticles
         << ", densityDiffusion " << c.densityDiffusion
         << ", shifting " << c.shifting
         << ", freeSurfaceThreshold " << c.freeSurfaceThreshold << nl;
+}
+
+
+void Foam::spemModel::setupConversion()
+{
+    const elementModel& em = *elements_;
+    const label nTri = mesh_.nTriangles();
+    std::vector<bool> fluidTri(nTri, false), solidTri(nTri, false);
+    scalar areaSum = 0, areaMax = 0;
+    label nFluid = 0;
+    for (label t = 0; t < nTri; ++t)
+    {
+        const label r = mesh_.triangleRegion()[t];
+        if (!em.hasMaterial(r)) continue;   // void
+        const spemMaterial& mat = em.material(r);
+        if (!mat.isFluid())
+        {
+            solidTri[t] = true;
+            continue;
+        }
+        const auto* f = dynamic_cast<const weaklyCompressibleNewtonian*>(&mat);
+        if (!f)
+        {
+            FatalErrorInFunction
+                << "Fluid region " << mesh_.regionNames()[r] << " ("
+                << mat.type() << ") cannot become particles" << exit(FatalError);
+        }
+        if
+        (
+            elementFluid_
+         && (
+                f->rho() != elementFluid_->rho() || f->c() != elementFluid_->c()
+             || f->kinematicViscosity()
+             != elementFluid_->kinematicViscosity()
+            )
+        )
+        {
+            FatalIOErrorInFunction(*this)
+                << "Fluid regions with different rho, c or mu: the particles"
+                << " of method SPEM model one fluid" << exit(FatalIOError);
+        }
+        elementFluid_ = f;
+        fluidTri[t] = true;
+        const scalar A = mesh_.triangleArea(t);
+        areaSum += A;
+        areaMax = max(areaMax, A);
+        ++nFluid;
+    }
+    if (!elementFluid_) return;
+
+    const scalar ratio =
+        sphFluid::controls::read(schemes_).smoothingLengthRatio;
+    fluidSpacing_ = std::sqrt(areaSum/nFluid);
+    conversion_.reset
+    (
+        new groupConversion
+        (
+            schemes_.subOrEmptyDict("conversion"), mesh_, fluidTri, solidTri,
+            ratio*std::sqrt(areaMax)
+        )
+    );
+    conversion_->describe(Info);
+
+    // Restart: the elements converted before, and their particles
+    IOobject cIO
+    (
+        "convertedTriangles", runTime_.timeName(), "spem", runTime_,
+        IOobject::MUST_READ, IOobject::NO_WRITE, false
+    );
+    if (cIO.typeHeaderOk<labelIOList>(true))
+    {
+        const labelIOList converted(cIO);
+        convertedTriangles_.assign(converted.begin(), converted.end());
+        if (convertedTriangles_.empty()) return;
+        elements_->removeTriangles(mesh_, convertedTriangles_);
+        particleSet ps;
+        std::vector<scalar> rhoOld;
+        if (!readParticleState(ps, rhoOld))
+        {
+            FatalErrorInFunction
+                << cIO.objectPath() << " lists converted elements but "
+                << runTime_.timePath()/"spem" << " has no particle state"
+                << exit(FatalError);
+        }
+        createParticleHalf
+        (
+            std::move(ps), std::move(rhoOld), *elementFluid_, fluidSpacing_
+        );
+        coupling_.reset(new elementParticleCoupling(schemes_, ratio));
+        coupling_->update(mesh_, *elements_, patchTypes_);
+        return;
+    }
+
+    const std::vector<label> preset = conversion_->presetTriangles(mesh_);
+    if (!preset.empty())
+    {
+        convert(preset);
+        Info<< "    preset particle regions: " << preset.size()
+            << " fluid elements became particles at t = 0" << nl;
+    }
+}
+
+
+void Foam::spemModel::convert(const std::vector<label>& triangles)
+{
+    const scalar ratio =
+        sphFluid::controls::read(schemes_).smoothingLengthRatio;
+
+    particleSet ps;
+    convertElements(mesh_, triangles, ratio, *elements_, ps);
+    convertedTriangles_.insert
+    (
+        convertedTriangles_.end(), triangles.begin(), triangles.end()
+    );
+
+    if (!particles_)
+    {
+        createParticleHalf
+        (
+            particleSet(), std::vector<scalar>(), *elementFluid_,
+            fluidSpacing_
+        );
+        particles_->setMassDamping(massDamping_);
+        coupling_.reset(new elementParticleCoupling(schemes_, ratio));
+    }
+    particles_->appendFluid(ps);
+    coupling_->update(mesh_, *elements_, patchTypes_);
+
+    Info<< "Conversion at time " << runTime_.timeName() << ": "
+        << triangles.size() << " fluid elements became particles; "
+        << elements_->nElements() << " elements, " << particles_->nFluid()
+        << " particles, " << coupling_->nInterfaceSegments()
+        << " interface segments" << nl;
+}
+
+
+void Foam::spemModel::evaluateHalves(const bool correctInterface)
+{
+    if (conversion_)
+    {
+        const std::vector<label> tris =
+            conversion_->trianglesToConvert(*elements_);
+        if (!tris.empty()) convert(tris);
+    }
+    const bool coupled = elements_ && particles_ && coupling_;
+    if (coupled)
+    {
+        coupling_->binParticles(*particles_);
+        if (correctInterface && lastDeltaT_ > 0)
+        {
+            coupling_->correctVelocities(*elements_, *particles_, lastDeltaT_);
+        }
+    }
+    if (elements_ && !elements_->evaluate())
+    {
+        stopWithLastGoodState(elements_->failure());
+    }
+    if (particles_)
+    {
+        if (coupled) coupling_->setGhosts(*elements_, *particles_);
+        if (!particles_->evaluate())
+        {
+            stopWithLastGoodState(particles_->failure());
+        }
+        if (coupled) coupling_->interfaceTraction(*elements_, *particles_);
+    }
 }
 
 
@@ -623,13 +825,20 @@ Foam::spemModel::spemModel(const Time& runTime)
     ),
     method_(methodTypeNames.get("method", schemes_)),
     mesh_(triMesh::read(runTime)),
+    elementFluid_(nullptr),
+    fluidSpacing_(0),
+    lastDeltaT_(0),
+    massDamping_(0),
     lastWrittenTime_(-GREAT)
 {
     checkKeywords
     (
         *this, {"regions", "boundaries", "damping", "slipCornerAngle"}
     );
-    checkKeywords(schemes_, {"method", "kernel", "sph"});
+    checkKeywords
+    (
+        schemes_, {"method", "kernel", "sph", "conversion", "coupling"}
+    );
     if (method_ == methodType::multiResolutionSPEM)
     {
         FatalIOErrorInFunction(schemes_)
@@ -639,8 +848,14 @@ Foam::spemModel::spemModel(const Time& runTime)
     }
 
     PtrList<spemMaterial> materials = readMaterials();
-    bool hasVoid = false;
-    forAll(materials, r) hasVoid = hasVoid || !materials.set(r);
+    bool anyMaterial = false;
+    forAll(materials, r) anyMaterial = anyMaterial || materials.set(r);
+    if (!anyMaterial)
+    {
+        FatalIOErrorInFunction(subDict("regions"))
+            << "Every region is void (empty space): nothing to solve"
+            << exit(FatalIOError);
+    }
 
     const dictionary* dampingDict = findDict("damping");
     if (dampingDict) checkKeywords(*dampingDict, {"massProportional"});
@@ -653,13 +868,8 @@ Foam::spemModel::spemModel(const Time& runTime)
         FatalIOErrorInFunction(*dampingDict)
             << "massProportional must not be negative" << exit(FatalIOError);
     }
+    massDamping_ = alpha;
 
-    if (method_ == methodType::SPEM && hasVoid)
-    {
-        FatalIOErrorInFunction(*this)
-            << "Regions with model void (empty space) need method SPH"
-            << " in this version" << exit(FatalIOError);
-    }
     readBoundaries();
     readGravity();
     // The state at t = 0 (a restart then overwrites what it stores)
@@ -679,6 +889,7 @@ Foam::spemModel::spemModel(const Time& runTime)
         elements_->setGravity(g_[0], g_[1]);
         elements_->setMassDamping(alpha);
         readState();
+        setupConversion();
     }
     else
     {
@@ -695,7 +906,8 @@ Foam::spemModel::spemModel(const Time& runTime)
         {
             const label ri = &r - em.regions().cdata();
             Info<< "    region " << r.name << ": "
-                << em.material(ri).type() << ", "
+                << (em.hasMaterial(ri) ? em.material(ri).type() : word("void"))
+                << ", "
                 << r.elemEnd - r.elemBegin << " elements, "
                 << r.domainEnd - r.domainBegin << " smoothing domains" << nl;
         }
@@ -789,14 +1001,7 @@ void Foam::spemModel::stopWithLastGoodState(const std::string failure)
 
 void Foam::spemModel::evaluate()
 {
-    if (elements_ && !elements_->evaluate())
-    {
-        stopWithLastGoodState(elements_->failure());
-    }
-    if (particles_ && !particles_->evaluate())
-    {
-        stopWithLastGoodState(particles_->failure());
-    }
+    evaluateHalves(true);
 }
 
 
@@ -811,6 +1016,7 @@ void Foam::spemModel::advance()
     {
         stopWithLastGoodState(particles_->failure());
     }
+    lastDeltaT_ = dt;
 }
 
 
@@ -839,6 +1045,11 @@ void Foam::spemModel::report(Ostream& os) const
         const scalar* f = particles_->wallForce();
         os  << ", wall particles = " << particles_->nWall()
             << ", force on walls = (" << f[0] << ' ' << f[1] << ')';
+    }
+    if (coupling_)
+    {
+        os  << ", ghost particles = " << particles_->nGhost()
+            << ", interface segments = " << coupling_->nInterfaceSegments();
     }
 }
 

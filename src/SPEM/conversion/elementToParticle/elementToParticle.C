@@ -1,4 +1,5 @@
 #include "elementToParticle.H"
+#include "elementModel.H"
 #include "error.H"
 
 #include <cmath>
@@ -48,6 +49,38 @@ Foam::label Foam::appendParticlesFromElements
         );
     }
     return first;
+}
+
+
+void Foam::convertElements
+(
+    const triMesh& mesh,
+    const std::vector<label>& triangles,
+    const scalar smoothingLengthRatio,
+    elementModel& elements,
+    particleSet& particles
+)
+{
+    std::vector<scalar> mass(mesh.nTriangles(), 0);
+    for (label el = 0; el < elements.nElements(); ++el)
+    {
+        mass[elements.elementTriangle()[el]] = elements.elementMass()[el];
+    }
+    for (const label t : triangles)
+    {
+        if (t < 0 || t >= mesh.nTriangles() || elements.removed(t))
+        {
+            FatalErrorInFunction
+                << "Triangle " << t << " is not an element of the model"
+                << exit(FatalError);
+        }
+    }
+    appendParticlesFromElements
+    (
+        elements.positions(), elements.velocities(), mesh.triangles(), mass,
+        triangles, smoothingLengthRatio, particles
+    );
+    elements.removeTriangles(mesh, triangles);
 }
 
 

@@ -64,47 +64,52 @@ bool Foam::functionObjects::pressureProbe::write()
 
     OFstream& os = file();
     os  << time_.value();
-    if (model().hasParticles())
-    {
-        // Kernel (Shepard) interpolation from the particles, wall particles
-        // included so that a probe on a wall reads the wall pressure
-        const sphFluid& sph = particles();
-        for (size_t i = 0; i < locations_.size()/2; ++i)
-        {
-            scalar p;
-            if (sph.interpolatePressure(locations_[2*i], locations_[2*i + 1], p))
-            {
-                os  << tab << p;
-            }
-            else
-            {
-                os  << tab << "NaN";
-            }
-        }
-        os  << endl;
-        return true;
-    }
-
-    const elementModel& em = elements();
+    const spemModel& m = model();
     for (size_t i = 0; i < locations_.size()/2; ++i)
     {
-        scalar w[3];
-        const label el = em.locate(locations_[2*i], locations_[2*i + 1], false, w);
-        if (el < 0)
+        const scalar px = locations_[2*i], py = locations_[2*i + 1];
+        scalar p = 0;
+        if (m.hasElements() && elementPressure(m.elements(), px, py, p))
+        {
+            os  << tab << p;
+        }
+        // Kernel (Shepard) interpolation from the particles, wall particles
+        // included so that a probe on a wall reads the wall pressure
+        else if
+        (
+            m.hasParticles() && m.particles().interpolatePressure(px, py, p)
+        )
+        {
+            os  << tab << p;
+        }
+        else
         {
             os  << tab << "NaN";
-            continue;
         }
-        scalar p = 0;
-        for (label j = 0; j < 3; ++j)
-        {
-            const label k = em.elementDomains()[3*el + j];
-            scalar sigma[6], pk;
-            em.domainCauchyStress(k, k + 1, sigma, &pk);
-            p += pk/3;
-        }
-        os  << tab << p;
     }
     os  << endl;
+    return true;
+}
+
+
+bool Foam::functionObjects::pressureProbe::elementPressure
+(
+    const elementModel& em,
+    const scalar x,
+    const scalar y,
+    scalar& p
+)
+{
+    scalar w[3];
+    const label el = em.locate(x, y, false, w);
+    if (el < 0) return false;
+    p = 0;
+    for (label j = 0; j < 3; ++j)
+    {
+        const label k = em.elementDomains()[3*el + j];
+        scalar sigma[6], pk;
+        em.domainCauchyStress(k, k + 1, sigma, &pk);
+        p += pk/3;
+    }
     return true;
 }

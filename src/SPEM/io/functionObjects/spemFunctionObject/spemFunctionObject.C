@@ -57,7 +57,7 @@ Foam::functionObjects::spemFunctionObject::particles() const
     {
         FatalErrorInFunction
             << "Function object " << name() << " of type " << type()
-            << " needs particles (method SPH), but this case has no particles (method "
+            << " needs particles, but this case has none (method "
             << spemModel::methodTypeNames[m.method()] << ')'
             << exit(FatalError);
     }
@@ -68,7 +68,8 @@ Foam::functionObjects::spemFunctionObject::particles() const
 bool Foam::functionObjects::spemFunctionObject::execute()
 {
     if (needs_ == needs::elements) elements();
-    if (needs_ == needs::particles) particles();
+    // method SPEM: particles appear at the first conversion
+    if (needs_ == needs::particles && !model().hasElements()) particles();
     return true;
 }
 

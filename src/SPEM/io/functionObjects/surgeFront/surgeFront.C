@@ -47,28 +47,61 @@ bool Foam::functionObjects::surgeFront::read(const dictionary& dict)
 
 bool Foam::functionObjects::surgeFront::write()
 {
-    const sphFluid& sph = particles();
+    const spemModel& m = model();
+    if (!m.hasElements()) particles();
     if (!writeToFile()) return true;
 
     // Upward: against gravity
-    const scalar* g = model().gravity();
+    const scalar* g = m.gravity();
     const scalar gMag = std::hypot(g[0], g[1]);
     const scalar ux = gMag > 0 ? -g[0]/gMag : 0;
     const scalar uy = gMag > 0 ? -g[1]/gMag : 1;
 
-    const particleSet& ps = sph.particles();
     scalar front = -GREAT, height = -GREAT;
-    for (label i = 0; i < ps.size(); ++i)
+    const auto add = [&](const scalar x, const scalar y, const scalar h)
     {
-        if (ps.kinds()[i] != particleSet::kind::fluid) continue;
-        if (sph.divR()[i] < minDivR_) continue;
-        const scalar rx = ps.positions()[2*i] - ox_;
-        const scalar ry = ps.positions()[2*i + 1] - oy_;
+        const scalar rx = x - ox_, ry = y - oy_;
         const scalar along = rx*dx_ + ry*dy_;
         front = max(front, along);
-        if (along < ps.smoothingLength()[i])
+        if (along < h) height = max(height, rx*ux + ry*uy);
+    };
+
+    if (m.hasParticles())
+    {
+        const sphFluid& sph = m.particles();
+        const particleSet& ps = sph.particles();
+        for (label i = 0; i < ps.size(); ++i)
         {
-            height = max(height, rx*ux + ry*uy);
+            if (ps.kinds()[i] != particleSet::kind::fluid) continue;
+            if (sph.divR()[i] < minDivR_) continue;
+            add
+            (
+                ps.positions()[2*i], ps.positions()[2*i + 1],
+                ps.smoothingLength()[i]
+            );
+        }
+    }
+    if (m.hasElements())
+    {
+        const elementModel& em = m.elements();
+        const std::vector<scalar>& x = em.positions();
+        for (label r = 0; r < em.regions().size(); ++r)
+        {
+            if (!em.hasMaterial(r) || !em.material(r).isFluid()) continue;
+            for
+            (
+                label el = em.regions()[r].elemBegin;
+                el < em.regions()[r].elemEnd;
+                ++el
+            )
+            {
+                const scalar h = std::sqrt(std::abs(em.elementArea()[el]));
+                for (label a = 0; a < 3; ++a)
+                {
+                    const label n = em.elementNodes()[3*el + a];
+                    add(x[2*n], x[2*n + 1], h);
+                }
+            }
         }
     }
 

@@ -1,0 +1,279 @@
+#include "elementParticleCoupling.H"
+#include "elementModel.H"
+#include "sphFluid.H"
+#include "checkKeywords.H"
+
+#include <algorithm>
+#include <cmath>
+#include <type_traits>
+
+// * * * * * * * * * * * * * * * * Constructors  * * * * * * * * * * * * * * //
+
+Foam::elementParticleCoupling::elementParticleCoupling
+(
+    const dictionary& schemesDict,
+    const scalar smoothingLengthRatio
+)
+:
+    velocityCorrection_(0.1),
+    smoothingLengthRatio_(smoothingLengthRatio)
+{
+    const dictionary* d = schemesDict.findDict("coupling");
+    if (d)
+    {
+        checkKeywords(*d, {"interfaceVelocityCorrection"});
+        velocityCorrection_ =
+            d->getOrDefault<scalar>
+            (
+                "interfaceVelocityCorrection", velocityCorrection_
+            );
+        if (!(velocityCorrection_ >= 0 && velocityCorrection_ <= 1))
+        {
+            FatalIOErrorInFunction(*d)
+                << "coupling/interfaceVelocityCorrection (phi of eq. 26)"
+                << " must lie in [0, 1], found " << velocityCorrection_
+                << exit(FatalIOError);
+        }
+    }
+}
+
+
+// * * * * * * * * * * * * * * * Member Functions  * * * * * * * * * * * * * //
+
+void Foam::elementParticleCoupling::update
+(
+    const triMesh& mesh,
+    const elementModel& elements,
+    const List<patchType>& patchTypes
+)
+{
+    const std::vector<label>& tri = mesh.triangles();
+    const std::vector<label>& triRegion = mesh.triangleRegion();
+    const std::vector<label>& triEdges = mesh.triangleEdges();
+    const std::vector<label>& edgeTri = mesh.edgeTriangles();
+
+    // Patch of each boundary edge (-1: internal)
+    std::vector<label> edgePatch(mesh.nEdges(), -1);
+    for (label s = 0; s < mesh.nSegments(); ++s)
+    {
+        edgePatch[mesh.segmentEdge()[s]] = mesh.segmentPatch()[s];
+    }
+
+    auto fluidElement = [&](const label t)
+    {
+        return
+            t >= 0 && !elements.removed(t)
+         && elements.material(triRegion[t]).isFluid();
+    };
+
+    segments_.clear();
+    for (label t = 0; t < mesh.nTriangles(); ++t)
+    {
+        if (!fluidElement(t)) continue;
+        for (label i = 0; i < 3; ++i)
+        {
+            const label k = triEdges[3*t + i];
+            const label other =
+                edgeTri[2*k] == t ? edgeTri[2*k + 1] : edgeTri[2*k];
+            bool open;
+            if (other < 0)
+            {
+                open = patchTypes[edgePatch[k]] == patchType::freeSurface;
+            }
+            else
+            {
+                open = elements.removed(other);
+            }
+            if (!open) continue;
+            // Edge i joins nodes i and i+1 of the counter-clockwise
+            // triangle: the element is on its left
+            segments_.push_back(tri[3*t + i]);
+            segments_.push_back(tri[3*t + (i + 1) % 3]);
+        }
+    }
+
+    interfaceNodes_ = segments_;
+    std::sort(interfaceNodes_.begin(), interfaceNodes_.end());
+    interfaceNodes_.erase
+    (
+        std::unique(interfaceNodes_.begin(), interfaceNodes_.end()),
+        interfaceNodes_.end()
+    );
+    nodePressure_.assign(elements.nNodes(), 0);
+}
+
+
+void Foam::elementParticleCoupling::binParticles(const sphFluid& particles)
+{
+    const particleSet& ps = particles.particles();
+    cells_.update(ps, particles.kernel().support()*ps.maxSmoothingLength());
+}
+
+
+void Foam::elementParticleCoupling::correctVelocities
+(
+    elementModel& elements,
+    const sphFluid& particles,
+    const scalar dt
+)
+{
+    if (velocityCorrection_ == 0) return;
+    const particleSet& ps = particles.particles();
+    const std::vector<scalar>& x = elements.positions();
+    const std::vector<scalar>& v = elements.velocities();
+    const std::vector<elementModel::constraint>& c = elements.constraints();
+    const scalar phi = velocityCorrection_;
+
+    particles.kernel().visit
+    (
+        [&](const auto& k)
+        {
+            using Kernel = std::decay_t<decltype(k)>;
+            for (const label n : interfaceNodes_)
+            {
+                // Walls and clamps keep their own velocity
+                if (c[n] != elementModel::constraint::free) continue;
+                const scalar un = v[2*n], vn = v[2*n + 1];
+                scalar du = 0, dv = 0;
+                cells_.forEachParticleNear
+                (
+                    ps, x[2*n], x[2*n + 1], Kernel::support,
+                    [&](const label j, const scalar, const scalar, const scalar r)
+                    {
+                        if (ps.kinds()[j] != particleSet::kind::fluid) return;
+                        const scalar VW =
+                            ps.mass()[j]/ps.density()[j]
+                           *Kernel::W(r, ps.smoothingLength()[j]);
+                        du -= VW*(un - ps.velocities()[2*j]);
+                        dv -= VW*(vn - ps.velocities()[2*j + 1]);
+                    }
+                );
+                // Eq. (26)
+                elements.correctVelocity(n, phi*du, phi*dv, dt);
+            }
+        }
+    );
+}
+
+
+void Foam::elementParticleCoupling::setGhosts
+(
+    const elementModel& elements,
+    sphFluid& particles
+)
+{
+    const particleSet& ps = particles.particles();
+    const std::vector<scalar>& x = elements.positions();
+    const std::vector<scalar>& v = elements.velocities();
+    const std::vector<label>& nodes = elements.elementNodes();
+    const std::vector<scalar>& mass = elements.elementMass();
+    const std::vector<scalar>& area = elements.elementArea();
+    const scalar kappa = particles.kernel().support();
+
+    ghostX_.clear();
+    ghostV_.clear();
+    ghostRho_.clear();
+    ghostM_.clear();
+    ghostH_.clear();
+
+    for (label r = 0; r < elements.regions().size(); ++r)
+    {
+        if (!elements.hasMaterial(r) || !elements.material(r).isFluid())
+        {
+            continue;
+        }
+        const label begin = elements.regions()[r].elemBegin;
+        const label end = elements.regions()[r].elemEnd;
+        for (label el = begin; el < end; ++el)
+        {
+            const label* n = &nodes[3*el];
+            const scalar cx = (x[2*n[0]] + x[2*n[1]] + x[2*n[2]])/3;
+            const scalar cy = (x[2*n[0] + 1] + x[2*n[1] + 1] + x[2*n[2] + 1])/3;
+            bool reached = false;
+            cells_.forEachParticleNear
+            (
+                ps, cx, cy, kappa,
+                [&](const label j, const scalar, const scalar, const scalar)
+                {
+                    reached =
+                        reached || ps.kinds()[j] == particleSet::kind::fluid;
+                }
+            );
+            if (!reached) continue;
+
+            // Eq. (17) with equal nodal shares, eq. (18)
+            ghostX_.push_back(cx);
+            ghostX_.push_back(cy);
+            ghostV_.push_back((v[2*n[0]] + v[2*n[1]] + v[2*n[2]])/3);
+            ghostV_.push_back((v[2*n[0] + 1] + v[2*n[1] + 1] + v[2*n[2] + 1])/3);
+            ghostRho_.push_back(mass[el]/area[el]);
+            ghostM_.push_back(mass[el]);
+            ghostH_.push_back(smoothingLengthRatio_*std::sqrt(area[el]));
+        }
+    }
+
+    particles.setGhosts
+    (
+        label(ghostM_.size()), ghostX_.data(), ghostV_.data(),
+        ghostRho_.data(), ghostM_.data(), ghostH_.data()
+    );
+}
+
+
+void Foam::elementParticleCoupling::interfaceTraction
+(
+    elementModel& elements,
+    const sphFluid& particles
+)
+{
+    std::vector<scalar>& f = elements.externalForce();
+    std::fill(f.begin(), f.end(), 0);
+    if (segments_.empty()) return;
+
+    const particleSet& ps = particles.particles();
+    const std::vector<scalar>& x = elements.positions();
+
+    // Shepard interpolation of the particles' pressure at the nodes
+    particles.kernel().visit
+    (
+        [&](const auto& k)
+        {
+            using Kernel = std::decay_t<decltype(k)>;
+            for (const label n : interfaceNodes_)
+            {
+                scalar sumW = 0, sumP = 0;
+                particles.cells().forEachParticleNear
+                (
+                    ps, x[2*n], x[2*n + 1], Kernel::support,
+                    [&](const label j, const scalar, const scalar, const scalar r)
+                    {
+                        if (ps.kinds()[j] != particleSet::kind::fluid) return;
+                        const scalar VW =
+                            ps.mass()[j]/ps.density()[j]
+                           *Kernel::W(r, ps.smoothingLength()[j]);
+                        sumW += VW;
+                        sumP += VW*ps.pressure()[j];
+                    }
+                );
+                nodePressure_[n] = sumW > 0 ? sumP/sumW : 0;
+            }
+        }
+    );
+
+    // Eq. (25) with sigma = -p I: F = -l (p_P + p_Q)/2 n, half to each node
+    for (label s = 0; s < nInterfaceSegments(); ++s)
+    {
+        const label P = segments_[2*s], Q = segments_[2*s + 1];
+        const scalar dx = x[2*Q] - x[2*P], dy = x[2*Q + 1] - x[2*P + 1];
+        // l n = (dy, -dx)
+        const scalar pMean = 0.5*(nodePressure_[P] + nodePressure_[Q]);
+        const scalar Fx = -pMean*dy, Fy = pMean*dx;
+        f[2*P] += 0.5*Fx;
+        f[2*P + 1] += 0.5*Fy;
+        f[2*Q] += 0.5*Fx;
+        f[2*Q + 1] += 0.5*Fy;
+    }
+}
+
+
+// ************************************************************************* //

@@ -1,0 +1,434 @@
+/*---------------------------------------------------------------------------*\
+Description
+    Unit tests of the element -> particle conversion of the SPEM (paper
+    sect. 2.3.1, eqs. 17-18) and of its group grid: conservation of mass
+    and momentum, one distorted element converting its whole group, and
+    the remnants a conversion leaves.
+
+\*---------------------------------------------------------------------------*/
+
+#include "groupConversion.H"
+#include "elementToParticle.H"
+#include "elementModel.H"
+#include "particleSet.H"
+#include "IStringStream.H"
+#include "testMeshes.H"
+#include "testModels.H"
+
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <random>
+#include <set>
+#include <sstream>
+
+namespace
+{
+
+using Foam::label;
+using Foam::scalar;
+
+const char* water =
+    "model weaklyCompressibleNewtonian; rho 1000; c 20; mu 1e-3;";
+
+Foam::dictionary dictOf(const std::string& text)
+{
+    Foam::IStringStream is(text);
+    return Foam::dictionary(is);
+}
+
+//- Conversion dictionary giving groups of size Delta_g for h_max
+Foam::dictionary groupsOfSize(const scalar size, const scalar hMax)
+{
+    std::ostringstream os;
+    os.precision(17);
+    os << "groupSizeFactor " << size/(2*hMax) << ";";
+    return dictOf(os.str());
+}
+
+//- Total mass and momentum of the nodes and the particles
+struct totals
+{
+    long double m = 0, px = 0, py = 0;
+};
+
+totals sum(const Foam::elementModel& em, const Foam::particleSet& ps)
+{
+    totals t;
+    const std::vector<scalar>& v = em.velocities();
+    for (label n = 0; n < em.nNodes(); ++n)
+    {
+        t.m += em.nodeMass()[n];
+        t.px += em.nodeMass()[n]*v[2*n];
+        t.py += em.nodeMass()[n]*v[2*n + 1];
+    }
+    for (label i = 0; i < ps.size(); ++i)
+    {
+        t.m += ps.mass()[i];
+        t.px += ps.mass()[i]*ps.velocities()[2*i];
+        t.py += ps.mass()[i]*ps.velocities()[2*i + 1];
+    }
+    return t;
+}
+
+//- The triangles of every group holding a triangle that the criterion
+//  judges distorted at positions x, and the number of distorted triangles
+std::vector<label> trianglesOfDistortedGroups
+(
+    const Foam::triMesh& mesh,
+    const Foam::groupConversion& conversion,
+    const std::vector<scalar>& x,
+    label& nDistorted
+)
+{
+    std::set<label> groups;
+    nDistorted = 0;
+    for (label t = 0; t < mesh.nTriangles(); ++t)
+    {
+        const label* n = &mesh.triangles()[3*t];
+        const std::vector<scalar>& X = mesh.points();
+        if
+        (
+            conversion.criterion().distorted
+            (
+                &x[2*n[0]], &x[2*n[1]], &x[2*n[2]],
+                &X[2*n[0]], &X[2*n[1]], &X[2*n[2]]
+            )
+        )
+        {
+            groups.insert(conversion.group(t));
+            ++nDistorted;
+        }
+    }
+    std::vector<label> out;
+    for (label t = 0; t < mesh.nTriangles(); ++t)
+    {
+        if (groups.count(conversion.group(t))) out.push_back(t);
+    }
+    return out;
+}
+
+} // End anonymous namespace
+
+
+TEST(ElementConversion, conservesMassExactlyAndMomentumToRoundOff)
+{
+    // A fluid block with a non-uniform initial density (a hydrostatic-like
+    // gradient), random velocities and displaced nodes
+    const Foam::triMesh mesh =
+        testMeshes::build({{0, 1, 0, 1, 10, 10, "water"}});
+    std::vector<scalar> density(mesh.nTriangles());
+    for (label t = 0; t < mesh.nTriangles(); ++t)
+    {
+        density[t] = 1000 + 0.37*t;
+    }
+    auto em = testModels::model
+    (
+        mesh, testModels::materials(mesh, {{"water", water}}), {}, density
+    );
+    std::mt19937 gen(7);
+    std::uniform_real_distribution<scalar> u(-1, 1);
+    std::vector<scalar> x = mesh.points(), v(x.size());
+    for (scalar& c : x) c += 0.01*u(gen);
+    for (scalar& c : v) c = u(gen);
+    em->setState(x, v);
+
+    Foam::particleSet ps;
+    const totals before = sum(*em, ps);
+
+    // Two separate sets, the second next to the first
+    std::vector<label> first, second;
+    for (label t = 0; t < mesh.nTriangles(); ++t)
+    {
+        if (t % 7 == 0) first.push_back(t);
+        else if (t % 7 == 1) second.push_back(t);
+    }
+    std::vector<scalar> elementMass(mesh.nTriangles());
+    for (label el = 0; el < em->nElements(); ++el)
+    {
+        elementMass[em->elementTriangle()[el]] = em->elementMass()[el];
+    }
+    Foam::convertElements(mesh, first, 1.3, *em, ps);
+    Foam::convertElements(mesh, second, 1.3, *em, ps);
+
+    ASSERT_EQ(ps.size(), label(first.size() + second.size()));
+    EXPECT_EQ
+    (
+        em->nElements(),
+        mesh.nTriangles() - label(first.size() + second.size())
+    );
+    // Each particle carries exactly its element's mass (eq. 18)
+    for (label i = 0; i < label(first.size()); ++i)
+    {
+        EXPECT_EQ(ps.mass()[i], elementMass[first[i]]);
+    }
+    // The remaining elements keep theirs: the sum of node masses is the
+    // sum of the remaining element masses
+    long double remaining = 0, nodes = 0;
+    for (const scalar m : em->elementMass()) remaining += m;
+    for (const scalar m : em->nodeMass()) nodes += m;
+    EXPECT_NEAR(double(nodes), double(remaining), 1e-13*double(remaining));
+
+    const totals after = sum(*em, ps);
+    std::cout << "mass before " << double(before.m) << ", relative change "
+        << double((after.m - before.m)/before.m) << "; momentum change ("
+        << double(after.px - before.px) << ' ' << double(after.py - before.py)
+        << ") of |p| " << double(std::hypot(before.px, before.py)) << std::endl;
+    EXPECT_NEAR(double(after.m), double(before.m), 1e-14*double(before.m));
+    const double scale = double(before.m);   // |v| <= sqrt(2)
+    EXPECT_NEAR(double(after.px), double(before.px), 1e-13*scale);
+    EXPECT_NEAR(double(after.py), double(before.py), 1e-13*scale);
+
+    // Particles at the barycentres, with rho = m/A of the current triangle
+    const label t = first[0];
+    const label* n = &mesh.triangles()[3*t];
+    const scalar cx = (x[2*n[0]] + x[2*n[1]] + x[2*n[2]])/3;
+    EXPECT_NEAR(ps.positions()[0], cx, 1e-15);
+    const scalar area = 0.5*
+    (
+        (x[2*n[1]] - x[2*n[0]])*(x[2*n[2] + 1] - x[2*n[0] + 1])
+      - (x[2*n[2]] - x[2*n[0]])*(x[2*n[1] + 1] - x[2*n[0] + 1])
+    );
+    EXPECT_NEAR(ps.density()[0], elementMass[t]/area, 1e-9*ps.density()[0]);
+}
+
+
+TEST(ElementConversion, removedElementsLeaveNoForceAndRestingNodes)
+{
+    // After converting every element around a node, the node has no mass
+    // and stays where it is; the rest still evaluates and advances
+    const Foam::triMesh mesh =
+        testMeshes::build({{0, 1, 0, 1, 4, 4, "water"}});
+    auto em = testModels::model(mesh, {{"water", water}});
+    em->setGravity(0, -9.81);
+    // Node (0.5, 0.5) and its triangles
+    label centre = -1;
+    for (label i = 0; i < mesh.nPoints(); ++i)
+    {
+        if
+        (
+            std::abs(mesh.points()[2*i] - 0.5) < 1e-12
+         && std::abs(mesh.points()[2*i + 1] - 0.5) < 1e-12
+        )
+        {
+            centre = i;
+        }
+    }
+    ASSERT_GE(centre, 0);
+    std::vector<label> around;
+    for
+    (
+        label j = mesh.nodeTriangleStart()[centre];
+        j < mesh.nodeTriangleStart()[centre + 1];
+        ++j
+    )
+    {
+        around.push_back(mesh.nodeTriangles()[j]/3);   // 3 t + local
+    }
+    Foam::particleSet ps;
+    Foam::convertElements(mesh, around, 1.3, *em, ps);
+    EXPECT_EQ(em->nodeMass()[centre], 0);
+    ASSERT_TRUE(em->evaluate()) << em->failure();
+    ASSERT_TRUE(em->advance(1e-4)) << em->failure();
+    EXPECT_EQ(em->positions()[2*centre + 1], 0.5);
+    EXPECT_EQ(em->velocities()[2*centre + 1], 0);
+    // Converting an element twice is an error
+    Foam::FatalError.throwExceptions();
+    EXPECT_THROW
+    (
+        Foam::convertElements(mesh, {around[0]}, 1.3, *em, ps),
+        Foam::error
+    );
+    Foam::FatalError.dontThrowExceptions();
+}
+
+
+TEST(GroupConversion, oneDistortedElementConvertsItsWholeGroup)
+{
+    // 16 x 16 cells of 1 m; h_max = 1.3 sqrt(0.5); lambda chosen for groups
+    // of 4 m: 32 triangles each
+    const Foam::triMesh mesh =
+        testMeshes::build({{0, 16, 0, 16, 16, 16, "water"}});
+    auto em = testModels::model(mesh, {{"water", water}});
+    const scalar hMax = 1.3*std::sqrt(0.5);
+    std::vector<bool> fluid(mesh.nTriangles(), true);
+    std::vector<bool> solid(mesh.nTriangles(), false);
+    Foam::groupConversion conversion
+    (
+        groupsOfSize(4, hMax),
+        mesh, fluid, solid, hMax
+    );
+    EXPECT_NEAR(conversion.groupSize(), 4, 1e-12);
+    EXPECT_EQ(conversion.nGroups(), 16);
+
+    // Undistorted mesh: nothing converts
+    EXPECT_TRUE(conversion.trianglesToConvert(*em).empty());
+
+    // Squash the one triangle whose centroid is nearest (6.5, 6.5) (in
+    // the interior of a group) by moving its nodes
+    label target = -1;
+    scalar best = 1e9;
+    for (label t = 0; t < mesh.nTriangles(); ++t)
+    {
+        const label* n = &mesh.triangles()[3*t];
+        scalar cx = 0, cy = 0;
+        for (label a = 0; a < 3; ++a)
+        {
+            cx += mesh.points()[2*n[a]]/3;
+            cy += mesh.points()[2*n[a] + 1]/3;
+        }
+        const scalar d = std::hypot(cx - 6.5, cy - 6.5);
+        if (d < best)
+        {
+            best = d;
+            target = t;
+        }
+    }
+    // Move the node of the target's largest angle towards the opposite
+    // side's midpoint: the target flattens, its angles there stay > 30 deg
+    // in the neighbours only if the move is small, so check the criterion
+    // on every triangle to know which are distorted
+    std::vector<scalar> x = mesh.points();
+    {
+        const label* n = &mesh.triangles()[3*target];
+        // Node 0 towards the midpoint of nodes 1 and 2
+        const scalar mx = 0.5*(x[2*n[1]] + x[2*n[2]]);
+        const scalar my = 0.5*(x[2*n[1] + 1] + x[2*n[2] + 1]);
+        x[2*n[0]] += 0.7*(mx - x[2*n[0]]);
+        x[2*n[0] + 1] += 0.7*(my - x[2*n[0] + 1]);
+    }
+    em->setState(x, std::vector<scalar>(x.size(), 0));
+
+    label nDistorted = 0;
+    const std::vector<label> expected =
+        trianglesOfDistortedGroups(mesh, conversion, x, nDistorted);
+    ASSERT_GT(nDistorted, 0);
+    EXPECT_TRUE
+    (
+        std::binary_search(expected.begin(), expected.end(), target)
+    );
+    const std::vector<label> converted = conversion.trianglesToConvert(*em);
+    std::cout << nDistorted << " distorted triangles, "
+        << converted.size() << " triangles to convert" << std::endl;
+    EXPECT_EQ(converted, expected);
+    // A group (4 m square, about 32 triangles) is far more than the
+    // distorted triangles
+    EXPECT_GE(converted.size(), 3u*nDistorted);
+    EXPECT_GE(converted.size(), 24u);
+}
+
+
+TEST(GroupConversion, remnantsWithOneElementNeighbourConvertToo)
+{
+    // A strip 1 cell high: each triangle has at most 2 neighbours; after
+    // the distorted group at its left end converts, the rest of the strip
+    // peels off element by element (every remaining end has one neighbour)
+    const Foam::triMesh mesh =
+        testMeshes::build({{0, 12, 0, 1, 12, 1, "water"}});
+    auto em = testModels::model(mesh, {{"water", water}});
+    const scalar hMax = 1.3*std::sqrt(0.5);
+    std::vector<bool> fluid(mesh.nTriangles(), true);
+    std::vector<bool> solid(mesh.nTriangles(), false);
+    Foam::groupConversion conversion
+    (
+        groupsOfSize(4, hMax),
+        mesh, fluid, solid, hMax
+    );
+    // Flatten the first triangle
+    std::vector<scalar> x = mesh.points();
+    const label* n = &mesh.triangles()[0];
+    x[2*n[0] + 1] = 0.5*(x[2*n[1] + 1] + x[2*n[2] + 1]);
+    x[2*n[0]] = 0.5*(x[2*n[1]] + x[2*n[2]]) + 0.1;
+    em->setState(x, std::vector<scalar>(x.size(), 0));
+    const std::vector<label> converted = conversion.trianglesToConvert(*em);
+    EXPECT_EQ(label(converted.size()), mesh.nTriangles());
+
+    // A wide block does not peel: converting one group of a 12 x 12 block
+    // leaves every other element with two or three neighbours
+    const Foam::triMesh block =
+        testMeshes::build({{0, 12, 0, 12, 12, 12, "water"}});
+    auto em2 = testModels::model(block, {{"water", water}});
+    std::vector<bool> fluid2(block.nTriangles(), true);
+    std::vector<bool> solid2(block.nTriangles(), false);
+    Foam::groupConversion conversion2
+    (
+        groupsOfSize(4, hMax),
+        block, fluid2, solid2, hMax
+    );
+    std::vector<scalar> x2 = block.points();
+    // Flatten a triangle at the block's centre
+    label centreTri = -1;
+    for (label t = 0; t < block.nTriangles(); ++t)
+    {
+        const label* m = &block.triangles()[3*t];
+        const scalar cx =
+            (x2[2*m[0]] + x2[2*m[1]] + x2[2*m[2]])/3;
+        const scalar cy =
+            (x2[2*m[0] + 1] + x2[2*m[1] + 1] + x2[2*m[2] + 1])/3;
+        if (std::abs(cx - 6) < 0.7 && std::abs(cy - 6) < 0.7) centreTri = t;
+    }
+    ASSERT_GE(centreTri, 0);
+    const label* m = &block.triangles()[3*centreTri];
+    x2[2*m[0]] += 0.7*(0.5*(x2[2*m[1]] + x2[2*m[2]]) - x2[2*m[0]]);
+    x2[2*m[0] + 1] += 0.7*(0.5*(x2[2*m[1] + 1] + x2[2*m[2] + 1]) - x2[2*m[0] + 1]);
+    em2->setState(x2, std::vector<scalar>(x2.size(), 0));
+    label nDistorted = 0;
+    const std::vector<label> expected =
+        trianglesOfDistortedGroups(block, conversion2, x2, nDistorted);
+    const std::vector<label> converted2 = conversion2.trianglesToConvert(*em2);
+    std::cout << converted2.size() << " triangles convert, "
+        << expected.size() << " in the distorted groups" << std::endl;
+    EXPECT_EQ(converted2, expected);
+}
+
+
+TEST(GroupConversion, groupNextToASolidStaysElements)
+{
+    const Foam::triMesh mesh = testMeshes::build
+    (
+        {{0, 8, 0, 1, 8, 1, "plate"}, {0, 8, 1, 9, 8, 8, "water"}}
+    );
+    const label plate = mesh.findRegion("plate");
+    std::vector<bool> fluid(mesh.nTriangles()), solid(mesh.nTriangles());
+    for (label t = 0; t < mesh.nTriangles(); ++t)
+    {
+        solid[t] = mesh.triangleRegion()[t] == plate;
+        fluid[t] = !solid[t];
+    }
+    auto em = testModels::model
+    (
+        mesh,
+        {
+            {"water", water},
+            {"plate", "model linearElastic; rho 2700; E 1e9; nu 0.3;"}
+        }
+    );
+    const scalar hMax = 1.3*std::sqrt(0.5);
+    Foam::groupConversion conversion
+    (
+        dictOf("groupSizeFactor 1.5;"), mesh, fluid, solid, hMax
+    );
+    // Flatten a water triangle touching the plate (centroid y < 1.5)
+    std::vector<scalar> x = mesh.points();
+    label t0 = -1;
+    for (label t = 0; t < mesh.nTriangles() && t0 < 0; ++t)
+    {
+        if (!fluid[t]) continue;
+        const label* n = &mesh.triangles()[3*t];
+        const scalar cy = (x[2*n[0] + 1] + x[2*n[1] + 1] + x[2*n[2] + 1])/3;
+        if (cy < 1.5) t0 = t;
+    }
+    ASSERT_GE(t0, 0);
+    const label* n = &mesh.triangles()[3*t0];
+    // Move the node not on the plate
+    const label a = x[2*n[0] + 1] > 1.5 ? 0 : (x[2*n[1] + 1] > 1.5 ? 1 : 2);
+    const label b = (a + 1) % 3, c = (a + 2) % 3;
+    x[2*n[a]] += 0.8*(0.5*(x[2*n[b]] + x[2*n[c]]) - x[2*n[a]]);
+    x[2*n[a] + 1] += 0.8*(0.5*(x[2*n[b] + 1] + x[2*n[c] + 1]) - x[2*n[a] + 1]);
+    em->setState(x, std::vector<scalar>(x.size(), 0));
+    EXPECT_TRUE(conversion.trianglesToConvert(*em).empty());
+}
+
+
+// ************************************************************************* //
