@@ -608,6 +608,8 @@ void Foam::spemModel::createParticleHalf
             boxMin, boxMax
         )
     );
+    // Also on the restart path of method SPEM
+    particles_->setMassDamping(massDamping_);
 
     if (!rhoOld.empty())
     {
@@ -748,7 +750,6 @@ void Foam::spemModel::convert(const std::vector<label>& triangles)
             particleSet(), std::vector<scalar>(), *elementFluid_,
             fluidSpacing_
         );
-        particles_->setMassDamping(massDamping_);
         coupling_.reset(new elementParticleCoupling(schemes_, ratio));
     }
     particles_->appendFluid(ps);
