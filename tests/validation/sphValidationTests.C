@@ -16,6 +16,7 @@ Description
 \*---------------------------------------------------------------------------*/
 
 #include "testFiles.H"
+#include "tutorialCases.H"
 
 #include <gtest/gtest.h>
 
@@ -36,45 +37,9 @@ namespace
 
 using testFiles::readFoamList;
 using testFiles::replaceEntry;
-
-//- Copy a tutorial's inputs (system, constant without meshes) to a fresh
-//  folder under the temporary directory
-fs::path copyTutorial(const std::string& name, const std::string& copyName)
-{
-    const fs::path source = fs::path(SPEM_PROJECT_DIR)/"tutorials"/name;
-    const fs::path caseDir = fs::temp_directory_path()/copyName;
-    fs::remove_all(caseDir);
-    fs::create_directories(caseDir);
-    for (const char* dir : {"system", "constant"})
-    {
-        fs::copy(source/dir, caseDir/dir, fs::copy_options::recursive);
-    }
-    fs::remove_all(caseDir/"constant/polyMesh");
-    fs::remove_all(caseDir/"constant/spemMesh");
-    return caseDir;
-}
-
-//- Run blockMesh, spemMeshConvert and spemFoam; false on a failure
-bool runCase(const fs::path& caseDir)
-{
-    const std::string run = "cd '" + caseDir.string() + "' && ";
-    for
-    (
-        const std::string& program :
-        {
-            std::string("blockMesh"), std::string(SPEM_MESH_CONVERT),
-            std::string(SPEM_FOAM)
-        }
-    )
-    {
-        const std::string name = fs::path(program).filename();
-        const int status =
-            std::system((run + program + " > log." + name + " 2>&1").c_str());
-        EXPECT_EQ(status, 0) << name << " failed, see " << caseDir/("log." + name);
-        if (status != 0) return false;
-    }
-    return true;
-}
+using tutorialCases::copyTutorial;
+using tutorialCases::readTable;
+using tutorialCases::runCase;
 
 //- Written time directories (those with a particle state), in time order
 std::vector<fs::path> particleStates(const fs::path& caseDir)
@@ -115,24 +80,6 @@ void expectParticlesKeptInside
         }
         EXPECT_EQ(outside, 0u) << "particles through a wall at " << dir;
     }
-}
-
-//- Columns of a '#'-commented, whitespace-separated table
-std::vector<std::vector<double>> readTable(const fs::path& file)
-{
-    std::ifstream is(file);
-    std::vector<std::vector<double>> rows;
-    std::string line;
-    while (std::getline(is, line))
-    {
-        if (line.empty() || line[0] == '#') continue;
-        std::istringstream ls(line);
-        std::vector<double> row;
-        double v;
-        while (ls >> v) row.push_back(v);
-        if (!row.empty()) rows.push_back(row);
-    }
-    return rows;
 }
 
 } // End anonymous namespace

@@ -1,0 +1,247 @@
+/*---------------------------------------------------------------------------*\
+Description
+    Validation of method SPEM (elements and particles together) on copies of
+    the tutorials, run as a user runs them, read back from the ParaView
+    series (VTK/) with VTK's own readers:
+      - hydrostaticTank with method SPEM and its top 0.15 m (of 0.5 m)
+        preset as particles (paper sect. 3.1 set-up, particles on top of
+        elements): after 1 s with the tutorial's damping, the pressure of
+        the elements and of the particles in horizontal bands within 2 %
+        of rho g H of rho g (H - y), the pressure jump across the
+        element-particle interface below 2 % of rho g H (issue 4, item 7),
+        no element converted beyond the preset ones, no particle below the
+        interface, and the fluid at rest.
+
+\*---------------------------------------------------------------------------*/
+
+#include "testFiles.H"
+#include "tutorialCases.H"
+
+#include <gtest/gtest.h>
+
+#include <vtkCellData.h>
+#include <vtkCompositeDataSet.h>
+#include <vtkDataArray.h>
+#include <vtkIdList.h>
+#include <vtkInformation.h>
+#include <vtkMultiBlockDataSet.h>
+#include <vtkNew.h>
+#include <vtkPointData.h>
+#include <vtkPointSet.h>
+#include <vtkPolyData.h>
+#include <vtkUnstructuredGrid.h>
+#include <vtkXMLMultiBlockDataReader.h>
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <filesystem>
+#include <string>
+#include <vector>
+
+namespace fs = std::filesystem;
+
+namespace
+{
+
+using testFiles::replaceEntry;
+using tutorialCases::copyTutorial;
+using tutorialCases::runCase;
+
+//- Points (x, y) and one data array of a block of the last .vtm of the
+//  series, by block name; cell data are given at the cell centres
+struct blockData
+{
+    std::vector<double> x, y, value, speed;
+};
+
+blockData readLastBlock
+(
+    const fs::path& caseDir,
+    const std::string& blockName,
+    const std::string& arrayName
+)
+{
+    std::vector<fs::path> vtms;
+    for (const auto& e : fs::directory_iterator(caseDir/"VTK"))
+    {
+        if (e.path().extension() == ".vtm") vtms.push_back(e.path());
+    }
+    std::sort(vtms.begin(), vtms.end());
+    blockData data;
+    if (vtms.empty()) { ADD_FAILURE() << "no .vtm in " << caseDir/"VTK"; return data; }
+
+    vtkNew<vtkXMLMultiBlockDataReader> reader;
+    reader->SetFileName(vtms.back().c_str());
+    reader->Update();
+    auto* blocks = vtkMultiBlockDataSet::SafeDownCast(reader->GetOutput());
+    vtkPointSet* block = nullptr;
+    for (unsigned i = 0; blocks && i < blocks->GetNumberOfBlocks(); ++i)
+    {
+        const char* name =
+            blocks->GetMetaData(i)->Get(vtkCompositeDataSet::NAME());
+        if (name && blockName == name)
+        {
+            block = vtkPointSet::SafeDownCast(blocks->GetBlock(i));
+        }
+    }
+    if (!block) { ADD_FAILURE() << "no block " << blockName; return data; }
+
+    vtkDataArray* velocity = block->GetPointData()->GetArray("velocity");
+    for (vtkIdType i = 0; velocity && i < velocity->GetNumberOfTuples(); ++i)
+    {
+        const double* v = velocity->GetTuple3(i);
+        data.speed.push_back(std::hypot(v[0], v[1]));
+    }
+
+    // Point data at the points; cell data at the centroids of the cells
+    vtkDataArray* values = block->GetPointData()->GetArray(arrayName.c_str());
+    const bool cellData = !values;
+    if (cellData) values = block->GetCellData()->GetArray(arrayName.c_str());
+    if (!values) { ADD_FAILURE() << "no array " << arrayName; return data; }
+    vtkNew<vtkIdList> cellPoints;
+    for (vtkIdType i = 0; i < values->GetNumberOfTuples(); ++i)
+    {
+        double c[3] = {0, 0, 0};
+        if (cellData)
+        {
+            block->GetCellPoints(i, cellPoints);
+            const vtkIdType n = cellPoints->GetNumberOfIds();
+            for (vtkIdType k = 0; k < n; ++k)
+            {
+                const double* p = block->GetPoint(cellPoints->GetId(k));
+                c[0] += p[0]/n;
+                c[1] += p[1]/n;
+            }
+        }
+        else
+        {
+            block->GetPoint(i, c);
+        }
+        data.x.push_back(c[0]);
+        data.y.push_back(c[1]);
+        data.value.push_back(values->GetTuple1(i));
+    }
+    return data;
+}
+
+//- Least-squares line value = a + b y through the points with y in
+//  [y0, y1) and x in [x0, x1]; returns (a, b)
+std::pair<double, double> fitLine
+(
+    const blockData& d,
+    const double y0, const double y1, const double x0, const double x1
+)
+{
+    double sy = 0, sp = 0, syy = 0, syp = 0;
+    int n = 0;
+    for (size_t i = 0; i < d.x.size(); ++i)
+    {
+        if (d.y[i] < y0 || d.y[i] >= y1 || d.x[i] < x0 || d.x[i] > x1) continue;
+        sy += d.y[i]; sp += d.value[i]; syy += d.y[i]*d.y[i]; syp += d.y[i]*d.value[i];
+        ++n;
+    }
+    EXPECT_GT(n, 2);
+    const double b = (n*syp - sy*sp)/(n*syy - sy*sy);
+    return {(sp - b*sy)/n, b};
+}
+
+} // End anonymous namespace
+
+
+TEST(SpemValidation, hydrostaticColumnWithParticlesOnElementsHasContinuousPressure)
+{
+    const fs::path caseDir =
+        copyTutorial("hydrostaticTank", "spemHydrostaticParticlesOnElements");
+    replaceEntry(caseDir/"system/blockMeshDict", "nx", "20");
+    replaceEntry(caseDir/"system/controlDict", "endTime", "1");
+    replaceEntry(caseDir/"system/controlDict", "writeInterval", "0.5");
+    replaceEntry(caseDir/"system/spemSchemes", "method", "SPEM");
+    // The top 0.15 m as particles from t = 0; the rest stays elements
+    const double yInterface = 0.35;
+    {
+        std::ofstream os(caseDir/"system/spemSchemes", std::ios::app);
+        os  << "conversion\n{\n    presetParticleRegions\n    {\n"
+            << "        top { type box; min (-1 " << yInterface
+            << " 0); max (1 1 0); }\n    }\n}\n";
+    }
+    ASSERT_TRUE(runCase(caseDir));
+
+    // Tutorial constants: W = H = 0.5 m, rho0 1000, g 9.81; nx 20: 800
+    // triangles, 6 of the 20 rows of cells preset (240 triangles)
+    const double H = 0.5, rho0 = 1000, g = 9.81, scale = rho0*g*H;
+    const blockData elements = readLastBlock(caseDir, "elements", "pressure");
+    const blockData particles = readLastBlock(caseDir, "particles", "pressure");
+    EXPECT_EQ(elements.value.size(), 560u) << "elements converted at rest";
+    EXPECT_EQ(particles.value.size(), 240u);
+
+    // Nothing moves: the fastest node or particle at 1 s against the
+    // free-fall speed sqrt(2 g H)
+    double vMax = 0;
+    for (const double v : elements.speed) vMax = std::max(vMax, v);
+    for (const double v : particles.speed) vMax = std::max(vMax, v);
+    const double vFall = std::sqrt(2*g*H);
+    EXPECT_LT(vMax, 0.01*vFall);
+
+    // No particle sank into the elements (half a particle spacing of
+    // tolerance: the lowest row sits at 1/3 of a cell above the interface)
+    const double dx = H/20;
+    double yLowest = H;
+    for (const double y : particles.y) yLowest = std::min(yLowest, y);
+    EXPECT_GT(yLowest, yInterface);
+
+    // Bands of one cell height, away from the side walls (the elements
+    // next to a no-slip wall carry its shear)
+    double largestOffset = 0;
+    for (const blockData* d : {&elements, &particles})
+    {
+        for (double y0 = 0; y0 < H - 1e-9; y0 += dx)
+        {
+            double sumP = 0, sumY = 0;
+            int n = 0;
+            for (size_t i = 0; i < d->x.size(); ++i)
+            {
+                if (d->y[i] < y0 || d->y[i] >= y0 + dx) continue;
+                if (d->x[i] < 0.1*H || d->x[i] > 0.9*H) continue;
+                sumP += d->value[i];
+                sumY += d->y[i];
+                ++n;
+            }
+            if (n == 0) continue;
+            const double p = sumP/n, y = sumY/n;
+            const double offset = p - rho0*g*(H - y);
+            largestOffset = std::max(largestOffset, std::abs(offset));
+            std::printf
+            (
+                "%s band at mean y = %.4f m: p %.1f Pa, rho g (H - y) %.1f Pa,"
+                " %+.2f %% of rho g H\n",
+                d == &elements ? "elements " : "particles", y, p,
+                rho0*g*(H - y), 100*offset/scale
+            );
+        }
+    }
+    EXPECT_LT(largestOffset, 0.02*scale);
+
+    // The jump at the interface: each side's least-squares line over the
+    // 0.1 m next to it, evaluated at the interface
+    const auto below = fitLine(elements, yInterface - 0.1, yInterface, 0.1*H, 0.9*H);
+    const auto above = fitLine(particles, yInterface, yInterface + 0.1, 0.1*H, 0.9*H);
+    const double pBelow = below.first + below.second*yInterface;
+    const double pAbove = above.first + above.second*yInterface;
+    std::printf
+    (
+        "interface y = %.3f m: elements %.1f Pa, particles %.1f Pa, jump %+.2f %%"
+        " of rho g H; rho g (H - y) %.1f Pa; dp/dy elements %.1f, particles"
+        " %.1f Pa/m; fastest %.2e m/s; lowest particle %.4f m\n",
+        yInterface, pBelow, pAbove, 100*(pAbove - pBelow)/scale,
+        rho0*g*(H - yInterface), below.second, above.second, vMax, yLowest
+    );
+    EXPECT_LT(std::abs(pAbove - pBelow), 0.02*scale);
+    EXPECT_LT(std::abs(below.second/(-rho0*g) - 1), 0.05);
+    EXPECT_LT(std::abs(above.second/(-rho0*g) - 1), 0.05);
+
+    if (!HasFailure()) fs::remove_all(caseDir);
+}
+
+
+// ************************************************************************* //
