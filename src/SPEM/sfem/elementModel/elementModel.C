@@ -117,8 +117,14 @@ void Foam::elementModel::build(const triMesh& mesh)
         // A removed triangle is no neighbour: its edges bound the rest
         label t0 = edgeTri[2*k], t1 = edgeTri[2*k + 1];
         if (t1 >= 0 && triElem[t1] < 0) t1 = -1;
-        if (triElem[t0] < 0) std::swap(t0, t1);
-        if (t0 < 0 || triElem[t0] < 0) continue;
+        if (triElem[t0] < 0)
+        {
+            // Keep the other side only (swapping would hand the removed
+            // triangle's region a domain without an element)
+            t0 = t1;
+            t1 = -1;
+        }
+        if (t0 < 0) continue;
         if (t1 >= 0 && triRegion[t0] == triRegion[t1])
         {
             regionDomains[triRegion[t0]].push_back

@@ -22,7 +22,7 @@ Foam::functionObjects::pointDisplacement::pointDisplacement
     spemFunctionObject(name, runTime, dict, needs::elements),
     px_(0),
     py_(0),
-    element_(-1),
+    nodes_{-1, -1, -1},
     weights_{0, 0, 0}
 {
     read(dict);
@@ -34,7 +34,7 @@ bool Foam::functionObjects::pointDisplacement::read(const dictionary& dict)
 {
     writeFile::read(dict);
     readPoint(dict, "point", px_, py_);
-    element_ = -1;
+    nodes_[0] = -1;
     return true;
 }
 
@@ -42,17 +42,21 @@ bool Foam::functionObjects::pointDisplacement::read(const dictionary& dict)
 bool Foam::functionObjects::pointDisplacement::write()
 {
     const elementModel& em = elements();
-    if (element_ < 0)
+    if (nodes_[0] < 0)
     {
-        element_ = em.locate(px_, py_, true, weights_);
-        if (element_ < 0)
+        const label element = em.locate(px_, py_, true, weights_);
+        if (element < 0)
         {
             FatalErrorInFunction
                 << "Function object " << name() << ": point (" << px_ << ' '
                 << py_ << ") is outside the mesh" << exit(FatalError);
         }
+        for (label a = 0; a < 3; ++a)
+        {
+            nodes_[a] = em.elementNodes()[3*element + a];
+        }
     }
-    const label* n = &em.elementNodes()[3*element_];
+    const label* n = nodes_;
     const std::vector<scalar>& x = em.positions();
     const std::vector<scalar>& X = em.referencePositions();
     scalar D[2] = {0, 0};
