@@ -11,6 +11,71 @@
 namespace
 {
     constexpr Foam::label minParallelLoop = Foam::spemMaterial::minParallelLoop;
+
+    using Foam::scalar;
+    using Foam::label;
+    using Foam::particleSet;
+
+    //- What the momentum equation reads of the fluid particle i
+    struct fluidSide
+    {
+        scalar vx, vy, rho, pr, cxx, cxy, cyy;   // pr = p/rho^2, C_i
+    };
+
+    //- Eq. (16): the acceleration of fluid particle i due to particle j,
+    //  pressure and viscous terms, with (dx, dy) = x_i - x_j at distance r.
+    //  G_ij = (C_i + C_j)/2 grad_i W_ij is antisymmetric in i, j; C_j = I
+    //  for dummies and ghosts. Shared by the momentum pass and the
+    //  structure force pass, so that a structure gets exactly the opposite
+    //  of the fluid's pair forces.
+    template<class Kernel>
+    inline void pairAcceleration
+    (
+        const fluidSide& fi,
+        const label j,
+        const scalar dx,
+        const scalar dy,
+        const scalar r,
+        const scalar hij,
+        const scalar* __restrict__ v,
+        const scalar* __restrict__ m,
+        const scalar* __restrict__ rho,
+        const scalar* __restrict__ p,
+        const particleSet::kind* __restrict__ kind,
+        const scalar* __restrict__ C,
+        const scalar mu,
+        scalar& fx,
+        scalar& fy
+    )
+    {
+        const scalar F = Kernel::F(r, hij);
+        const scalar gxw = dx*F, gyw = dy*F;
+
+        const bool corrected = kind[j] == particleSet::kind::fluid;
+        const scalar* Cj = &C[3*j];
+        const scalar bxx = corrected ? Cj[0] : 1;
+        const scalar bxy = corrected ? Cj[1] : 0;
+        const scalar byy = corrected ? Cj[2] : 1;
+        const scalar Gx = 0.5*((fi.cxx + bxx)*gxw + (fi.cxy + bxy)*gyw);
+        const scalar Gy = 0.5*((fi.cxy + bxy)*gxw + (fi.cyy + byy)*gyw);
+
+        // Pressure
+        const scalar rhoj = rho[j];
+        const scalar pf = -m[j]*(fi.pr + p[j]/(rhoj*rhoj));
+        fx = pf*Gx;
+        fy = pf*Gy;
+
+        // Viscous: no viscous stress at a free-slip wall
+        if (kind[j] != particleSet::kind::slipWall)
+        {
+            const scalar rs = fi.rho + rhoj;
+            const scalar vf =
+                4*m[j]*2*mu*(dx*gxw + dy*gyw)
+               /(rs*rs*(r*r + 0.01*hij*hij));
+            fx += vf*(fi.vx - v[2*j]);
+            fy += vf*(fi.vy - v[2*j + 1]);
+        }
+    }
 }
 
 const Foam::Enum<Foam::gradientCorrectionType>
@@ -108,6 +173,7 @@ Foam::sphFluid::sphFluid
     nFluid_(0),
     nWall_(0),
     nGhost_(0),
+    nStructure_(0),
     nextId_(0),
     freshIdBegin_(0),
     massDamping_(0),
@@ -115,17 +181,22 @@ Foam::sphFluid::sphFluid
     stepsSinceReorder_(reorderInterval),
     stableDeltaT_(GREAT),
     wallForce_{0, 0},
-    ghostForce_{0, 0}
+    ghostForce_{0, 0},
+    structureForce_{0, 0}
 {
     for (const particleSet::kind k : particles_.kinds())
     {
         if (k == particleSet::kind::fluid) ++nFluid_;
-        else if (particleSet::isWall(k)) ++nWall_;
+        else if (k == particleSet::kind::wall || k == particleSet::kind::slipWall)
+        {
+            ++nWall_;
+        }
         else
         {
             FatalErrorInFunction
-                << "Ghost particles are set by setGhosts(), not given at"
-                << " construction" << exit(FatalError);
+                << "Ghost and structure particles are set by setGhosts() and"
+                << " setStructureParticles(), not given at construction"
+                << exit(FatalError);
         }
     }
     for (const label id : particles_.id()) nextId_ = std::max(nextId_, id + 1);
@@ -274,8 +345,11 @@ void Foam::sphFluid::densityPass(const Kernel&)
 
                 // Continuity: m_j v_ij (x) grad_i W (eqs. 16, 23). A wall
                 // particle's velocity field holds the mirrored velocity of
-                // the viscous term; the wall itself is at rest.
-                const bool moving = fluidj || ghostj;
+                // the viscous term, the wall itself is at rest; a structure
+                // particle's holds the structure's velocity until the wall
+                // pass.
+                const bool moving =
+                    fluidj || ghostj || kind[j] == particleSet::kind::structure;
                 const scalar wx = m[j]*(vxi - (moving ? v[2*j] : 0));
                 const scalar wy = m[j]*(vyi - (moving ? v[2*j + 1] : 0));
                 Sxx += wx*gx;
@@ -286,7 +360,7 @@ void Foam::sphFluid::densityPass(const Kernel&)
                 // Density diffusion between fluid particles (ghosts are
                 // fluid), hydrostatic part removed; psi_ij . grad_i W =
                 // -2 drho F (x_j - x_i = -(dx, dy))
-                if (moving)
+                if (fluidj || ghostj)
                 {
                     const scalar dRho =
                         (rhoj - rhoi) + (hx*dx + hy*dy);
@@ -337,12 +411,21 @@ void Foam::sphFluid::wallPass(const Kernel&)
     scalar* __restrict__ v = particles_.velocities().data();
     scalar* __restrict__ rho = particles_.density().data();
     scalar* __restrict__ p = particles_.pressure().data();
-    const scalar c2 = c_*c_, rho0 = rho0_, gx = gx_, gy = gy_;
+    const label* __restrict__ id = particles_.id().data();
+    const scalar* __restrict__ aStructure = structureAcceleration_.data();
+    const scalar c2 = c_*c_, rho0 = rho0_;
 
     #pragma omp parallel for schedule(static) if(n > minParallelLoop)
     for (label w = 0; w < n; ++w)
     {
         if (!particleSet::isWall(kind[w])) continue;
+
+        // A structure moves: its velocity (set with it) and acceleration
+        const bool structure = kind[w] == particleSet::kind::structure;
+        const scalar uw = structure ? v[2*w] : 0;
+        const scalar vw = structure ? v[2*w + 1] : 0;
+        const scalar gx = gx_ - (structure ? aStructure[2*id[w]] : 0);
+        const scalar gy = gy_ - (structure ? aStructure[2*id[w] + 1] : 0);
 
         scalar sumW = 0, sumP = 0, sumRhoX = 0, sumRhoY = 0, sumU = 0, sumV = 0;
         cells_.forEachNeighbour
@@ -372,22 +455,22 @@ void Foam::sphFluid::wallPass(const Kernel&)
 
         if (sumW > 0)
         {
-            // Adami et al. 2012 with a static wall (wall acceleration 0)
+            // Adami et al. 2012, (g - a_w) with the wall's acceleration
             const scalar pw =
                 std::max((sumP + gx*sumRhoX + gy*sumRhoY)/sumW, scalar(0));
             p[w] = pw;
             rho[w] = rho0 + pw/c2;
-            // No-slip: mirrored fluid velocity; free-slip walls do not use
-            // it
-            v[2*w] = -sumU/sumW;
-            v[2*w + 1] = -sumV/sumW;
+            // No-slip: mirrored fluid velocity, 2 v_w - v_f; free-slip
+            // walls do not use it
+            v[2*w] = 2*uw - sumU/sumW;
+            v[2*w + 1] = 2*vw - sumV/sumW;
         }
         else
         {
             p[w] = 0;
             rho[w] = rho0;
-            v[2*w] = 0;
-            v[2*w + 1] = 0;
+            v[2*w] = uw;
+            v[2*w + 1] = vw;
         }
     }
 }
@@ -409,10 +492,10 @@ void Foam::sphFluid::momentumPass(const Kernel&)
 
     const scalar mu = mu_, gx = gx_, gy = gy_, c = c_;
     const scalar nu = mu_/rho0_;
-    scalar fwx = 0, fwy = 0, fgx = 0, fgy = 0, dtMin = GREAT;
+    scalar fwx = 0, fwy = 0, fgx = 0, fgy = 0, fsx = 0, fsy = 0, dtMin = GREAT;
 
     // Performance critical: every fluid particle, every step.
-    #pragma omp parallel for schedule(static) reduction(+: fwx, fwy, fgx, fgy) reduction(min: dtMin) if(n > minParallelLoop)
+    #pragma omp parallel for schedule(static) reduction(+: fwx, fwy, fgx, fgy, fsx, fsy) reduction(min: dtMin) if(n > minParallelLoop)
     for (label i = 0; i < n; ++i)
     {
         if (kind[i] != particleSet::kind::fluid)
@@ -423,48 +506,31 @@ void Foam::sphFluid::momentumPass(const Kernel&)
         }
 
         const scalar vxi = v[2*i], vyi = v[2*i + 1];
-        const scalar rhoi = rho[i], pi = p[i];
-        const scalar pri = pi/(rhoi*rhoi);
-        const scalar cxx = C[3*i], cxy = C[3*i + 1], cyy = C[3*i + 2];
-        scalar ax = 0, ay = 0, wx = 0, wy = 0, gfx = 0, gfy = 0;
+        const fluidSide fi
+        {
+            vxi, vyi, rho[i], p[i]/(rho[i]*rho[i]), C[3*i], C[3*i + 1], C[3*i + 2]
+        };
+        scalar ax = 0, ay = 0, wx = 0, wy = 0, gfx = 0, gfy = 0, sx = 0, sy = 0;
 
         cells_.forEachNeighbour
         (
             particles_, i, kappa,
             [&](const label j, const scalar dx, const scalar dy, const scalar r)
             {
-                const scalar hij = 0.5*(h[i] + h[j]);
-                const scalar F = Kernel::F(r, hij);
-                const scalar gxw = dx*F, gyw = dy*F;
-
-                // G_ij = (C_i + C_j)/2 grad_i W_ij: antisymmetric in i, j
-                const bool wall = kind[j] != particleSet::kind::fluid;
-                const scalar* Cj = &C[3*j];
-                const scalar bxx = wall ? 1 : Cj[0];
-                const scalar bxy = wall ? 0 : Cj[1];
-                const scalar byy = wall ? 1 : Cj[2];
-                const scalar Gx = 0.5*((cxx + bxx)*gxw + (cxy + bxy)*gyw);
-                const scalar Gy = 0.5*((cxy + bxy)*gxw + (cyy + byy)*gyw);
-
-                // Eq. (16), pressure
-                const scalar rhoj = rho[j];
-                const scalar pf = -m[j]*(pri + p[j]/(rhoj*rhoj));
-                scalar fx = pf*Gx, fy = pf*Gy;
-
-                // Eq. (16), viscous: no viscous stress at a free-slip wall
-                if (kind[j] != particleSet::kind::slipWall)
-                {
-                    const scalar rs = rhoi + rhoj;
-                    const scalar vf =
-                        4*m[j]*2*mu*(dx*gxw + dy*gyw)
-                       /(rs*rs*(r*r + 0.01*hij*hij));
-                    fx += vf*(vxi - v[2*j]);
-                    fy += vf*(vyi - v[2*j + 1]);
-                }
-
+                scalar fx, fy;
+                pairAcceleration<Kernel>
+                (
+                    fi, j, dx, dy, r, 0.5*(h[i] + h[j]),
+                    v, m, rho, p, kind, C, mu, fx, fy
+                );
                 ax += fx;
                 ay += fy;
-                if (particleSet::isWall(kind[j]))
+                if (kind[j] == particleSet::kind::structure)
+                {
+                    sx += fx;
+                    sy += fy;
+                }
+                else if (particleSet::isWall(kind[j]))
                 {
                     wx += fx;
                     wy += fy;
@@ -484,6 +550,8 @@ void Foam::sphFluid::momentumPass(const Kernel&)
         fwy -= m[i]*wy;
         fgx -= m[i]*gfx;
         fgy -= m[i]*gfy;
+        fsx -= m[i]*sx;
+        fsy -= m[i]*sy;
 
         // Stable step of this particle at Courant number 1
         const scalar speed = std::sqrt(vxi*vxi + vyi*vyi);
@@ -498,7 +566,60 @@ void Foam::sphFluid::momentumPass(const Kernel&)
     wallForce_[1] = fwy;
     ghostForce_[0] = fgx;
     ghostForce_[1] = fgy;
+    structureForce_[0] = fsx;
+    structureForce_[1] = fsy;
     stableDeltaT_ = dtMin;
+}
+
+
+template<class Kernel>
+void Foam::sphFluid::structureForcePass(const Kernel&)
+{
+    const label n = particles_.size();
+    const scalar kappa = Kernel::support;
+    const scalar* __restrict__ v = particles_.velocities().data();
+    const scalar* __restrict__ m = particles_.mass().data();
+    const scalar* __restrict__ h = particles_.smoothingLength().data();
+    const scalar* __restrict__ rho = particles_.density().data();
+    const scalar* __restrict__ p = particles_.pressure().data();
+    const particleSet::kind* __restrict__ kind = particles_.kinds().data();
+    const label* __restrict__ id = particles_.id().data();
+    const scalar* __restrict__ C = correction_.data();
+    scalar* __restrict__ force = structureParticleForce_.data();
+    const scalar mu = mu_;
+
+    // F_w = -sum_f m_f a_fw: the pair forces of the momentum pass, seen
+    // from the structure particle (a gather: no two threads write one w)
+    #pragma omp parallel for schedule(static) if(n > minParallelLoop)
+    for (label w = 0; w < n; ++w)
+    {
+        if (kind[w] != particleSet::kind::structure) continue;
+        scalar Fx = 0, Fy = 0;
+        cells_.forEachNeighbour
+        (
+            particles_, w, kappa,
+            [&](const label f, const scalar dx, const scalar dy, const scalar r)
+            {
+                if (kind[f] != particleSet::kind::fluid) return;
+                const fluidSide ff
+                {
+                    v[2*f], v[2*f + 1], rho[f], p[f]/(rho[f]*rho[f]),
+                    C[3*f], C[3*f + 1], C[3*f + 2]
+                };
+                scalar fx, fy;
+                // (dx, dy) = x_w - x_f; the pair needs x_f - x_w
+                pairAcceleration<Kernel>
+                (
+                    ff, w, -dx, -dy, r, 0.5*(h[f] + h[w]),
+                    v, m, rho, p, kind, C, mu, fx, fy
+                );
+                Fx -= m[f]*fx;
+                Fy -= m[f]*fy;
+            }
+        );
+        force[2*id[w]] = Fx;
+        force[2*id[w] + 1] = Fy;
+    }
 }
 
 
@@ -522,6 +643,10 @@ bool Foam::sphFluid::evaluate()
     freshIdBegin_ = nextId_;
     kernel_->visit([this](const auto& k) { wallPass(k); });
     kernel_->visit([this](const auto& k) { momentumPass(k); });
+    if (nStructure_ > 0)
+    {
+        kernel_->visit([this](const auto& k) { structureForcePass(k); });
+    }
 
     // A density that went non-positive or non-finite: the step failed
     const label n = particles_.size();
@@ -627,6 +752,95 @@ void Foam::sphFluid::appendFluid(const particleSet& newParticles)
 }
 
 
+Foam::label Foam::sphFluid::removeParticles(const particleSet::kind kind)
+{
+    const label nOld = particles_.size();
+    std::vector<scalar>& px = particles_.positions();
+    std::vector<scalar>& pv = particles_.velocities();
+    std::vector<scalar>& prho = particles_.density();
+    std::vector<scalar>& pp = particles_.pressure();
+    std::vector<scalar>& pm = particles_.mass();
+    std::vector<scalar>& ph = particles_.smoothingLength();
+    std::vector<particleSet::kind>& pk = particles_.kinds();
+    std::vector<unsigned char>& pl = particles_.level();
+    std::vector<label>& pid = particles_.id();
+    label k = 0;
+    for (label i = 0; i < nOld; ++i)
+    {
+        if (pk[i] == kind) continue;
+        if (k != i)
+        {
+            for (int c = 0; c < 2; ++c)
+            {
+                px[2*k + c] = px[2*i + c];
+                pv[2*k + c] = pv[2*i + c];
+                oldPosition_[2*k + c] = oldPosition_[2*i + c];
+                oldVelocity_[2*k + c] = oldVelocity_[2*i + c];
+            }
+            prho[k] = prho[i];
+            pp[k] = pp[i];
+            pm[k] = pm[i];
+            ph[k] = ph[i];
+            pk[k] = pk[i];
+            pl[k] = pl[i];
+            pid[k] = pid[i];
+            oldDensity_[k] = oldDensity_[i];
+        }
+        ++k;
+    }
+    particles_.resize(k);
+    oldPosition_.resize(2*k);
+    oldVelocity_.resize(2*k);
+    oldDensity_.resize(k);
+    return k;
+}
+
+
+void Foam::sphFluid::setStructureParticles
+(
+    const label n,
+    const scalar* x,
+    const scalar* v,
+    const scalar* a,
+    const scalar* m,
+    const scalar* h
+)
+{
+    if (nStructure_ > 0) removeParticles(particleSet::kind::structure);
+    nStructure_ = 0;
+
+    const label first = particles_.size();
+    particles_.resize(first + n);
+    oldPosition_.resize(2*(first + n));
+    oldVelocity_.resize(2*(first + n));
+    oldDensity_.resize(first + n);
+    structureAcceleration_.assign(a, a + 2*n);
+    structureParticleForce_.assign(2*n, 0);
+    for (label k = 0; k < n; ++k)
+    {
+        const label i = first + k;
+        for (int c = 0; c < 2; ++c)
+        {
+            particles_.positions()[2*i + c] = x[2*k + c];
+            particles_.velocities()[2*i + c] = v[2*k + c];
+            oldPosition_[2*i + c] = x[2*k + c];
+            oldVelocity_[2*i + c] = v[2*k + c];
+        }
+        // Pressure and density follow from the fluid in the wall pass
+        particles_.density()[i] = rho0_;
+        oldDensity_[i] = rho0_;
+        particles_.pressure()[i] = 0;
+        particles_.mass()[i] = m[k];
+        particles_.smoothingLength()[i] = h[k];
+        particles_.kinds()[i] = particleSet::kind::structure;
+        particles_.level()[i] = 0;
+        particles_.id()[i] = k;
+    }
+    nStructure_ = n;
+    resizeFields();
+}
+
+
 void Foam::sphFluid::setGhosts
 (
     const label n,
@@ -637,46 +851,8 @@ void Foam::sphFluid::setGhosts
     const scalar* h
 )
 {
-    // Drop the old ghosts: a stable compaction of every per-particle field
-    // that outlives a step (memory is kept, nothing is allocated)
-    if (nGhost_ > 0)
-    {
-        const label nOld = particles_.size();
-        std::vector<scalar>& px = particles_.positions();
-        std::vector<scalar>& pv = particles_.velocities();
-        std::vector<scalar>& prho = particles_.density();
-        std::vector<scalar>& pp = particles_.pressure();
-        std::vector<scalar>& pm = particles_.mass();
-        std::vector<scalar>& ph = particles_.smoothingLength();
-        std::vector<particleSet::kind>& pk = particles_.kinds();
-        std::vector<unsigned char>& pl = particles_.level();
-        std::vector<label>& pid = particles_.id();
-        label k = 0;
-        for (label i = 0; i < nOld; ++i)
-        {
-            if (pk[i] == particleSet::kind::ghost) continue;
-            if (k != i)
-            {
-                for (int c = 0; c < 2; ++c)
-                {
-                    px[2*k + c] = px[2*i + c];
-                    pv[2*k + c] = pv[2*i + c];
-                    oldPosition_[2*k + c] = oldPosition_[2*i + c];
-                    oldVelocity_[2*k + c] = oldVelocity_[2*i + c];
-                }
-                prho[k] = prho[i];
-                pp[k] = pp[i];
-                pm[k] = pm[i];
-                ph[k] = ph[i];
-                pk[k] = pk[i];
-                pl[k] = pl[i];
-                pid[k] = pid[i];
-                oldDensity_[k] = oldDensity_[i];
-            }
-            ++k;
-        }
-        particles_.resize(k);
-    }
+    if (nGhost_ > 0) removeParticles(particleSet::kind::ghost);
+    nGhost_ = 0;
 
     const label first = particles_.size();
     particles_.resize(first + n);
