@@ -253,11 +253,10 @@ TEST(GroupConversion, oneDistortedElementConvertsItsWholeGroup)
     auto em = testModels::model(mesh, {{"water", water}});
     const scalar hMax = 1.3*std::sqrt(0.5);
     std::vector<bool> fluid(mesh.nTriangles(), true);
-    std::vector<bool> solid(mesh.nTriangles(), false);
     Foam::groupConversion conversion
     (
         groupsOfSize(4, hMax),
-        mesh, fluid, solid, hMax
+        mesh, fluid, hMax
     );
     EXPECT_NEAR(conversion.groupSize(), 4, 1e-12);
     EXPECT_EQ(conversion.nGroups(), 16);
@@ -329,11 +328,10 @@ TEST(GroupConversion, remnantsWithOneElementNeighbourConvertToo)
     auto em = testModels::model(mesh, {{"water", water}});
     const scalar hMax = 1.3*std::sqrt(0.5);
     std::vector<bool> fluid(mesh.nTriangles(), true);
-    std::vector<bool> solid(mesh.nTriangles(), false);
     Foam::groupConversion conversion
     (
         groupsOfSize(4, hMax),
-        mesh, fluid, solid, hMax
+        mesh, fluid, hMax
     );
     // Flatten the first triangle
     std::vector<scalar> x = mesh.points();
@@ -350,11 +348,10 @@ TEST(GroupConversion, remnantsWithOneElementNeighbourConvertToo)
         testMeshes::build({{0, 12, 0, 12, 12, 12, "water"}});
     auto em2 = testModels::model(block, {{"water", water}});
     std::vector<bool> fluid2(block.nTriangles(), true);
-    std::vector<bool> solid2(block.nTriangles(), false);
     Foam::groupConversion conversion2
     (
         groupsOfSize(4, hMax),
-        block, fluid2, solid2, hMax
+        block, fluid2, hMax
     );
     std::vector<scalar> x2 = block.points();
     // Flatten a triangle at the block's centre
@@ -383,7 +380,7 @@ TEST(GroupConversion, remnantsWithOneElementNeighbourConvertToo)
 }
 
 
-TEST(GroupConversion, groupNextToASolidStaysElements)
+TEST(GroupConversion, groupNextToASolidConvertsItsFluidOnly)
 {
     const Foam::triMesh mesh = testMeshes::build
     (
@@ -407,7 +404,7 @@ TEST(GroupConversion, groupNextToASolidStaysElements)
     const scalar hMax = 1.3*std::sqrt(0.5);
     Foam::groupConversion conversion
     (
-        dictOf("groupSizeFactor 1.5;"), mesh, fluid, solid, hMax
+        dictOf("groupSizeFactor 1.5;"), mesh, fluid, hMax
     );
     // Flatten a water triangle touching the plate (centroid y < 1.5)
     std::vector<scalar> x = mesh.points();
@@ -427,7 +424,11 @@ TEST(GroupConversion, groupNextToASolidStaysElements)
     x[2*n[a]] += 0.8*(0.5*(x[2*n[b]] + x[2*n[c]]) - x[2*n[a]]);
     x[2*n[a] + 1] += 0.8*(0.5*(x[2*n[b] + 1] + x[2*n[c] + 1]) - x[2*n[a] + 1]);
     em->setState(x, std::vector<scalar>(x.size(), 0));
-    EXPECT_TRUE(conversion.trianglesToConvert(*em).empty());
+    // The particles act on the plate through its virtual particles
+    // (eq. 27): the group converts, the plate stays elements
+    const std::vector<label> converted = conversion.trianglesToConvert(*em);
+    EXPECT_NE(std::find(converted.begin(), converted.end(), t0), converted.end());
+    for (const label t : converted) EXPECT_FALSE(solid[t]) << t;
 }
 
 

@@ -611,6 +611,28 @@ void Foam::spemModel::createParticleHalf
     // Also on the restart path of method SPEM
     particles_->setMassDamping(massDamping_);
 
+    // The solids seen by the particles (eq. 27)
+    if (elements_)
+    {
+        structureCoupling_.reset
+        (
+            new structureParticleCoupling
+            (
+                mesh_, *elements_, patchTypes_, spacing, layers, fluid.rho(), h
+            )
+        );
+        if (structureCoupling_->size() == 0)
+        {
+            structureCoupling_.reset();
+        }
+        else
+        {
+            Info<< "    structure-particle coupling: "
+                << structureCoupling_->size()
+                << " virtual particles in the solid regions" << nl;
+        }
+    }
+
     if (!rhoOld.empty())
     {
         // Restart: the fluid particles come first; walls start at rho0
@@ -635,7 +657,7 @@ void Foam::spemModel::setupConversion()
 {
     const elementModel& em = *elements_;
     const label nTri = mesh_.nTriangles();
-    std::vector<bool> fluidTri(nTri, false), solidTri(nTri, false);
+    std::vector<bool> fluidTri(nTri, false);
     scalar areaSum = 0, areaMax = 0;
     label nFluid = 0;
     for (label t = 0; t < nTri; ++t)
@@ -643,11 +665,7 @@ void Foam::spemModel::setupConversion()
         const label r = mesh_.triangleRegion()[t];
         if (!em.hasMaterial(r)) continue;   // void
         const spemMaterial& mat = em.material(r);
-        if (!mat.isFluid())
-        {
-            solidTri[t] = true;
-            continue;
-        }
+        if (!mat.isFluid()) continue;
         const auto* f = dynamic_cast<const weaklyCompressibleNewtonian*>(&mat);
         if (!f)
         {
@@ -681,15 +699,18 @@ void Foam::spemModel::setupConversion()
     const scalar ratio =
         sphFluid::controls::read(schemes_).smoothingLengthRatio;
     fluidSpacing_ = std::sqrt(areaSum/nFluid);
-    conversion_.reset
-    (
-        new groupConversion
+    if (method_ == methodType::SPEM)
+    {
+        conversion_.reset
         (
-            schemes_.subOrEmptyDict("conversion"), mesh_, fluidTri, solidTri,
-            ratio*std::sqrt(areaMax)
-        )
-    );
-    conversion_->describe(Info);
+            new groupConversion
+            (
+                schemes_.subOrEmptyDict("conversion"), mesh_, fluidTri,
+                ratio*std::sqrt(areaMax)
+            )
+        );
+        conversion_->describe(Info);
+    }
 
     // Restart: the elements converted before, and their particles
     IOobject cIO
@@ -721,12 +742,25 @@ void Foam::spemModel::setupConversion()
         return;
     }
 
-    const std::vector<label> preset = conversion_->presetTriangles(mesh_);
+    // method SPEM: the preset particle regions; method SPH: all the fluid
+    std::vector<label> preset;
+    if (conversion_)
+    {
+        preset = conversion_->presetTriangles(mesh_);
+    }
+    else
+    {
+        for (label t = 0; t < nTri; ++t)
+        {
+            if (fluidTri[t]) preset.push_back(t);
+        }
+    }
     if (!preset.empty())
     {
         convert(preset);
-        Info<< "    preset particle regions: " << preset.size()
-            << " fluid elements became particles at t = 0" << nl;
+        Info<< "    " << (conversion_ ? "preset particle regions: " : "")
+            << preset.size() << " fluid elements became particles at t = 0"
+            << nl;
     }
 }
 
@@ -787,11 +821,25 @@ void Foam::spemModel::evaluateHalves(const bool correctInterface)
     if (particles_)
     {
         if (coupled) coupling_->setGhosts(*elements_, *particles_);
+        if (structureCoupling_)
+        {
+            structureCoupling_->setParticles
+            (
+                *elements_, *particles_, lastDeltaT_
+            );
+        }
         if (!particles_->evaluate())
         {
             stopWithLastGoodState(particles_->failure());
         }
+        // The particles' forces on the elements: eq. (25) on the fluid
+        // elements' interface (it sets the external forces), eq. (27) on
+        // the solids (it adds to them)
         if (coupled) coupling_->interfaceTraction(*elements_, *particles_);
+        if (structureCoupling_)
+        {
+            structureCoupling_->applyForces(*elements_, *particles_);
+        }
     }
 }
 
@@ -880,7 +928,14 @@ Foam::spemModel::spemModel(const Time& runTime)
             mesh_, patchTypes_, materials, subDict("regions"), g_[0], g_[1]
         );
 
-    if (method_ == methodType::SPEM)
+    // Solids are elements with every method: method SPH converts all the
+    // fluid at t = 0 and couples it to them (eq. 27)
+    bool anySolid = false;
+    forAll(materials, r)
+    {
+        anySolid = anySolid || (materials.set(r) && !materials[r].isFluid());
+    }
+    if (method_ == methodType::SPEM || anySolid)
     {
         elements_.reset
         (
@@ -1051,6 +1106,11 @@ void Foam::spemModel::report(Ostream& os) const
     {
         os  << ", ghost particles = " << particles_->nGhost()
             << ", interface segments = " << coupling_->nInterfaceSegments();
+    }
+    if (structureCoupling_)
+    {
+        const scalar* f = structureCoupling_->force();
+        os  << ", force on solids = (" << f[0] << ' ' << f[1] << ')';
     }
 }
 

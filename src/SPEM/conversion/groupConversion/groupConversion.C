@@ -12,7 +12,6 @@ Foam::groupConversion::groupConversion
     const dictionary& conversionDict,
     const triMesh& mesh,
     const std::vector<bool>& fluidTriangle,
-    const std::vector<bool>& solidTriangle,
     const scalar hMax
 )
 :
@@ -23,8 +22,7 @@ Foam::groupConversion::groupConversion
         conversionDict.getOrDefault<scalar>("groupSizeFactor", 1.5)
     ),
     groupSize_(groupSizeFactor_*2*hMax),
-    triangleGroup_(mesh.nTriangles(), -1),
-    warnedNextToSolid_(false)
+    triangleGroup_(mesh.nTriangles(), -1)
 {
     checkKeywords
     (
@@ -121,23 +119,6 @@ Foam::groupConversion::groupConversion
             triangleNeighbours_[3*t + i] = t0 == t ? t1 : t0;
         }
     }
-
-    // Groups with a node on a solid region
-    std::vector<bool> solidNode(mesh.nPoints(), false);
-    for (label t = 0; t < nTri; ++t)
-    {
-        if (!solidTriangle[t]) continue;
-        for (label a = 0; a < 3; ++a) solidNode[tri[3*t + a]] = true;
-    }
-    nextToSolid_.assign(nGroups, false);
-    for (label t = 0; t < nTri; ++t)
-    {
-        if (triangleGroup_[t] < 0) continue;
-        for (label a = 0; a < 3; ++a)
-        {
-            if (solidNode[tri[3*t + a]]) nextToSolid_[triangleGroup_[t]] = true;
-        }
-    }
 }
 
 
@@ -212,19 +193,6 @@ Foam::groupConversion::trianglesToConvert(const elementModel& elements)
         if (!distorted_[el]) continue;
         const label g = triangleGroup_[triangle[el]];
         if (g < 0) continue;
-        if (nextToSolid_[g])
-        {
-            if (!warnedNextToSolid_)
-            {
-                WarningInFunction
-                    << "A distorted fluid element next to a solid region"
-                    << " stays an element: fluid particles cannot act on"
-                    << " structures in this version (structure-particle"
-                    << " coupling, eq. 27). Said once." << endl;
-                warnedNextToSolid_ = true;
-            }
-            continue;
-        }
         convert[g] = true;
         any = true;
     }
@@ -253,7 +221,7 @@ Foam::groupConversion::trianglesToConvert(const elementModel& elements)
     {
         return
             t >= 0 && triangleGroup_[t] >= 0 && !elements.removed(t)
-         && !converting[t] && !nextToSolid_[triangleGroup_[t]];
+         && !converting[t];
     };
     std::vector<label> queue(out);
     while (!queue.empty())
