@@ -1,5 +1,6 @@
 #include "rigidBodyMotion.H"
 #include "rigidBodyShape.H"
+#include "primitiveEntry.H"
 
 namespace Foam
 {
@@ -11,10 +12,25 @@ namespace Foam
 namespace
 {
 
-//- An OpenFOAM vector (z = 0) from (x, y)
-Foam::vector to3D(const Foam::vector2D& v)
+// dictionary::set(key, value) goes through text at the default precision
+// (6 digits); entries made of number tokens keep every bit for a restart
+
+//- Entry key: the scalar value, exactly
+void setExact(Foam::dictionary& dict, const Foam::word& key, const Foam::scalar value)
 {
-    return Foam::vector(v.x(), v.y(), 0);
+    dict.set(new Foam::primitiveEntry(key, Foam::token(value)));
+}
+
+//- Entry key: the OpenFOAM vector (x y 0) of v, exactly
+void setExact(Foam::dictionary& dict, const Foam::word& key, const Foam::vector2D& v)
+{
+    Foam::List<Foam::token> tokens(5);
+    tokens[0] = Foam::token::BEGIN_LIST;
+    tokens[1] = Foam::token(v.x());
+    tokens[2] = Foam::token(v.y());
+    tokens[3] = Foam::token(Foam::scalar(0));
+    tokens[4] = Foam::token::END_LIST;
+    dict.set(new Foam::primitiveEntry(key, std::move(tokens)));
 }
 
 } // End anonymous namespace
@@ -90,13 +106,13 @@ void Foam::rigidBodyMotion::advance
 
 void Foam::rigidBodyMotion::writeState(dictionary& dict) const
 {
-    dict.set("position", to3D(position()));
-    dict.set("angle", angle());
-    dict.set("velocity", to3D(velocity_));
-    dict.set("angularVelocity", angularVelocity_);
-    dict.set("force", to3D(force_));
-    dict.set("moment", moment_);
-    dict.set("previousDeltaT", previousDeltaT_);
+    setExact(dict, "position", position());
+    setExact(dict, "angle", angle());
+    setExact(dict, "velocity", velocity_);
+    setExact(dict, "angularVelocity", angularVelocity_);
+    setExact(dict, "force", force_);
+    setExact(dict, "moment", moment_);
+    setExact(dict, "previousDeltaT", previousDeltaT_);
 }
 
 

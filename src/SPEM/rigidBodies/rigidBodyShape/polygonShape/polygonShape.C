@@ -344,7 +344,7 @@ void Foam::polygonShape::appendLayer
 
     // A point of a moved edge or arc is on the layer when no other part of
     // the surface is closer than depth; the tolerance absorbs round-off
-    const scalar tolerance = 1e-9*size_;
+    const scalar tolerance = 1e-12*size_;
     auto onLayer = [&](const vector2D& p)
     {
         return signedDistance(p.x(), p.y()) <= -depth + tolerance;
