@@ -1,0 +1,103 @@
+#include "rigidBodies.H"
+#include "checkKeywords.H"
+#include "IOdictionary.H"
+#include "Time.H"
+
+const Foam::word Foam::rigidBodies::dictName("rigidBodyProperties");
+
+
+Foam::rigidBodies::rigidBodies(const Time& runTime)
+:
+    rigidBodies
+    (
+        static_cast<const dictionary&>
+        (
+            IOdictionary
+            (
+                IOobject
+                (
+                    dictName,
+                    runTime.constant(),
+                    runTime,
+                    IOobject::READ_IF_PRESENT,
+                    IOobject::NO_WRITE,
+                    false
+                )
+            )
+        )
+    )
+{}
+
+
+Foam::rigidBodies::rigidBodies(const dictionary& dict)
+{
+    checkKeywords(dict, {"bodies"});
+
+    const entry* bodiesEntry = dict.findEntry("bodies", keyType::LITERAL);
+    if (!bodiesEntry)
+    {
+        return;
+    }
+    if (!bodiesEntry->isDict())
+    {
+        FatalIOErrorInFunction(dict)
+            << "Entry 'bodies' of " << dict.name()
+            << " must be a dictionary of bodies, each a sub-dictionary:"
+            << nl << "    bodies { wedge { shape polygon; ... } }"
+            << exit(FatalIOError);
+    }
+
+    const dictionary& bodiesDict = bodiesEntry->dict();
+    for (const entry& e : bodiesDict)
+    {
+        if (!e.isDict())
+        {
+            FatalIOErrorInFunction(bodiesDict)
+                << "Entry '" << e.keyword() << "' of " << bodiesDict.name()
+                << " must be a sub-dictionary: "
+                << e.keyword() << " { shape polygon; ... }"
+                << exit(FatalIOError);
+        }
+        append(new rigidBody(e.keyword(), e.dict()));
+    }
+}
+
+
+Foam::label Foam::rigidBodies::findBody(const word& name) const
+{
+    forAll(*this, i)
+    {
+        if (operator[](i).name() == name)
+        {
+            return i;
+        }
+    }
+    return -1;
+}
+
+
+void Foam::rigidBodies::writeState(dictionary& dict) const
+{
+    for (const rigidBody& body : *this)
+    {
+        dictionary bodyDict;
+        body.writeState(bodyDict);
+        dict.set(body.name(), bodyDict);
+    }
+}
+
+
+void Foam::rigidBodies::readState(const dictionary& dict)
+{
+    for (rigidBody& body : *this)
+    {
+        const dictionary* bodyDict = dict.findDict(body.name());
+        if (!bodyDict)
+        {
+            FatalIOErrorInFunction(dict)
+                << "No state of rigid body '" << body.name() << "' in "
+                << dict.name() << exit(FatalIOError);
+        }
+        body.readState(*bodyDict);
+    }
+}

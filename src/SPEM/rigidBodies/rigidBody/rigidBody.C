@@ -1,0 +1,87 @@
+#include "rigidBody.H"
+#include "checkKeywords.H"
+
+Foam::rigidBody::rigidBody(const word& name, const dictionary& dict)
+:
+    name_(name),
+    shape_(rigidBodyShape::New(dict)),
+    motion_(rigidBodyMotion::New(dict, *shape_))
+{
+    // One flat dictionary holds the keywords of both models
+    wordList allowed({"shape", "motion"});
+    allowed.append(shape_->keywords());
+    allowed.append(motion_->keywords());
+    checkKeywords(dict, allowed);
+}
+
+
+Foam::boundBox Foam::rigidBody::boundingBox() const
+{
+    return shape_->bounds(motion_->placement());
+}
+
+
+void Foam::rigidBody::toCurrent
+(
+    const std::vector<scalar>& X,
+    std::vector<scalar>& x
+) const
+{
+    const rigidTransform2D& placement = motion_->placement();
+    x.resize(X.size());
+    const label n = label(X.size()/2);
+    for (label i = 0; i < n; ++i)
+    {
+        const vector2D p = placement.toCurrent(vector2D(X[2*i], X[2*i + 1]));
+        x[2*i] = p.x();
+        x[2*i + 1] = p.y();
+    }
+}
+
+
+Foam::bodyWallParticles Foam::rigidBody::wallParticles
+(
+    const scalar spacing,
+    const label nLayers
+) const
+{
+    return shape_->wallParticles(spacing, nLayers);
+}
+
+
+std::vector<Foam::scalar> Foam::rigidBody::surfacePoints
+(
+    const scalar spacing
+) const
+{
+    std::vector<scalar> points;
+    toCurrent(shape_->surfacePoints(spacing), points);
+    return points;
+}
+
+
+void Foam::rigidBody::advance
+(
+    const scalar time,
+    const scalar deltaT,
+    const scalar Fx,
+    const scalar Fy,
+    const scalar Mz,
+    const scalar gx,
+    const scalar gy
+)
+{
+    motion_->advance(time, deltaT, Fx, Fy, Mz, gx, gy);
+}
+
+
+void Foam::rigidBody::writeState(dictionary& dict) const
+{
+    motion_->writeState(dict);
+}
+
+
+void Foam::rigidBody::readState(const dictionary& dict)
+{
+    motion_->readState(dict);
+}

@@ -1,0 +1,108 @@
+#include "freeMotion.H"
+#include "rigidBodyShape.H"
+#include "addToRunTimeSelectionTable.H"
+
+namespace Foam
+{
+    defineTypeNameAndDebug(freeMotion, 0);
+    addToRunTimeSelectionTable(rigidBodyMotion, freeMotion, dictionary);
+}
+
+
+Foam::freeMotion::freeMotion
+(
+    const dictionary& dict,
+    const rigidBodyShape& shape
+)
+:
+    rigidBodyMotion(dict, shape),
+    mass_(dict.get<scalar>("mass")),
+    momentOfInertia_(0),
+    held_{false, false, false}
+{
+    // Written to reject NaN as well
+    if (!(mass_ > 0))
+    {
+        FatalIOErrorInFunction(dict)
+            << "Entry 'mass " << mass_ << "' of " << dict.name()
+            << " must be positive" << exit(FatalIOError);
+    }
+
+    // A uniform body: I = (m/A) integral of |X - c|^2 over the shape
+    momentOfInertia_ = dict.getOrDefault<scalar>
+    (
+        "momentOfInertia",
+        mass_/shape.area()*shape.polarMomentOfArea(position0())
+    );
+    if (!(momentOfInertia_ > 0))
+    {
+        FatalIOErrorInFunction(dict)
+            << "Entry 'momentOfInertia " << momentOfInertia_ << "' of "
+            << dict.name() << " must be positive" << exit(FatalIOError);
+    }
+
+    velocity_ = getOrDefault2D(dict, "initialVelocity", vector2D::zero);
+    angularVelocity_ = dict.getOrDefault<scalar>("initialAngularVelocity", 0);
+
+    const wordList constraints
+    (
+        dict.getOrDefault<wordList>("constraints", wordList())
+    );
+    const wordList dofNames({"x", "y", "rotation"});
+    for (const word& name : constraints)
+    {
+        const label dof = dofNames.find(name);
+        if (dof < 0)
+        {
+            FatalIOErrorInFunction(dict)
+                << "Unknown degree of freedom '" << name
+                << "' in entry 'constraints' of " << dict.name() << nl
+                << "Valid ones: " << dofNames << exit(FatalIOError);
+        }
+        held_[dof] = true;
+    }
+}
+
+
+Foam::wordList Foam::freeMotion::keywords() const
+{
+    wordList words(rigidBodyMotion::keywords());
+    words.append
+    (
+        wordList
+        ({
+            "mass",
+            "momentOfInertia",
+            "initialVelocity",
+            "initialAngularVelocity",
+            "constraints"
+        })
+    );
+    return words;
+}
+
+
+void Foam::freeMotion::updateVelocity
+(
+    const scalar,
+    const scalar deltaT,
+    const vector2D& gravity
+)
+{
+    // Span from the previous half step (t = 0 before the first step: a
+    // half kick) to the next one
+    const scalar span = 0.5*(previousDeltaT_ + deltaT);
+
+    if (!held_[0])
+    {
+        velocity_.x() += span*(force_.x()/mass_ + gravity.x());
+    }
+    if (!held_[1])
+    {
+        velocity_.y() += span*(force_.y()/mass_ + gravity.y());
+    }
+    if (!held_[2])
+    {
+        angularVelocity_ += span*moment_/momentOfInertia_;
+    }
+}
