@@ -70,6 +70,22 @@ struct scene
     }
 };
 
+//- The coupling's virtual particles as the structure particles of fluid
+void setStructureParticles
+(
+    Foam::structureParticleCoupling& coupling,
+    const Foam::elementModel& elements,
+    Foam::sphFluid& fluid
+)
+{
+    std::vector<scalar> x, v, a, m, h;
+    coupling.appendParticles(elements, 0, x, v, a, m, h);
+    fluid.setStructureParticles
+    (
+        label(m.size()), x.data(), v.data(), a.data(), m.data(), h.data()
+    );
+}
+
 } // End anonymous namespace
 
 
@@ -176,7 +192,7 @@ TEST(StructureParticleCoupling, virtualParticlesMoveWithTheSolid)
     const scalar lo[2] = {-2, -2}, hi[2] = {3, 3};
     Foam::IStringStream is("sph {}");
     Foam::sphFluid fluid(Foam::dictionary(is), std::move(ps), 1000, 20, 1e-3, 0, 0, lo, hi);
-    coupling.setParticles(*s.elements, fluid, 0);
+    setStructureParticles(coupling, *s.elements, fluid);
     ASSERT_EQ(fluid.nStructure(), coupling.size());
 
     const Foam::particleSet& all = fluid.particles();
@@ -240,11 +256,11 @@ TEST(StructureParticleCoupling, structureGetsTheOppositeOfTheFluidForceToRoundOf
         Foam::dictionary(is), std::move(ps), 1000, 20, 1e-3, 0, -9.81, lo, hi
     );
 
-    coupling.setParticles(*s.elements, fluid, 0);
+    setStructureParticles(coupling, *s.elements, fluid);
     ASSERT_TRUE(fluid.evaluate());
     std::vector<scalar>& f = s.elements->externalForce();
     std::fill(f.begin(), f.end(), 0);
-    coupling.applyForces(*s.elements, fluid);
+    coupling.applyForces(*s.elements, fluid.structureParticleForce().data());
 
     // On the solid nodes, summed
     long double Fx = 0, Fy = 0;

@@ -16,7 +16,10 @@ Description
         (mass kept), and the plate tip's peak horizontal displacement
         between 0.02 and 0.07 m (issue 4, item 7; the published curves
         peak at 0.041 and 0.049 m), with its distance from Ryzhakov et al.
-        (2010) printed.
+        (2010) printed;
+      - hydrostaticTank with a cylinder held at rest under water (a rigid
+        body, method SPH and SPEM): the fluid's force on it within 2 % of
+        Archimedes' buoyancy rho g pi r^2 after 1 s.
 
 \*---------------------------------------------------------------------------*/
 
@@ -322,6 +325,70 @@ TEST(SpemValidation, damBreakElasticPlateWithElementsAndParticlesBendsThePlate)
 TEST(SpemValidation, damBreakElasticPlateWithParticlesOnlyBendsThePlate)
 {
     damBreakElasticPlate("SPH");
+}
+
+
+TEST(SpemValidation, submergedCylinderFeelsArchimedesBuoyancy)
+{
+    // Tank 0.5 m x 0.5 m of water at rest; a cylinder of radius 0.08 m
+    // held with its centre 0.3 m under the surface
+    const double rho0 = 1000, g = 9.81, r = 0.08;
+    const double buoyancy = rho0*g*M_PI*r*r;
+    for (const std::string method : {"SPH", "SPEM"})
+    {
+        const fs::path caseDir =
+            copyTutorial("hydrostaticTank", "spemSubmergedCylinder" + method);
+        replaceEntry(caseDir/"system/blockMeshDict", "nx", "20");
+        replaceEntry(caseDir/"system/controlDict", "endTime", "1");
+        replaceEntry(caseDir/"system/controlDict", "writeInterval", "0.5");
+        replaceEntry(caseDir/"system/spemSchemes", "method", method);
+        std::ofstream(caseDir/"constant/rigidBodyProperties")
+            << "FoamFile { version 2.0; format ascii; class dictionary;"
+               " object rigidBodyProperties; }\n"
+               "bodies\n{\n    cylinder\n    {\n        shape circle;"
+               " centre (0.25 0.2 0); radius " << r << ";\n"
+               "        motion prescribed; velocity (0 0 0);\n    }\n}\n";
+        {
+            std::string text = testFiles::readText(caseDir/"system/controlDict");
+            const std::string functions = "functions\n{";
+            const size_t at = text.find(functions);
+            ASSERT_NE(at, std::string::npos);
+            text.insert
+            (
+                at + functions.size(),
+                "\n    cylinder { type rigidBodyState; body cylinder;"
+                " writeControl timeStep; writeInterval 10; }\n"
+            );
+            std::ofstream(caseDir/"system/controlDict") << text;
+        }
+        ASSERT_TRUE(runCase(caseDir));
+
+        // Mean vertical force over the last 0.2 s
+        const std::vector<std::vector<double>> rows =
+            readTable(caseDir/"postProcessing/cylinder/0/cylinder.dat");
+        ASSERT_FALSE(rows.empty());
+        EXPECT_NEAR(rows.back()[0], 1, 0.01);
+        double sum = 0, sumX = 0;
+        int n = 0;
+        for (const auto& row : rows)
+        {
+            if (row[0] < 0.8) continue;
+            sumX += row[7];
+            sum += row[8];
+            ++n;
+        }
+        ASSERT_GT(n, 0);
+        const double Fy = sum/n, Fx = sumX/n;
+        std::printf
+        (
+            "submerged cylinder, method %s: Fy %.2f N/m, rho g pi r^2 %.2f N/m"
+            " (%+.2f %%), Fx %.3f N/m\n",
+            method.c_str(), Fy, buoyancy, 100*(Fy/buoyancy - 1), Fx
+        );
+        EXPECT_LT(std::abs(Fy/buoyancy - 1), 0.02);
+        EXPECT_LT(std::abs(Fx), 0.01*buoyancy);
+        if (!::testing::Test::HasFailure()) fs::remove_all(caseDir);
+    }
 }
 
 

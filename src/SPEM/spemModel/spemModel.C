@@ -11,6 +11,8 @@
 #include "weaklyCompressibleNewtonian.H"
 #include "scalarIOField.H"
 #include "labelIOList.H"
+#include "OFstream.H"
+#include "sphKernel.H"
 
 #include <algorithm>
 #include <cmath>
@@ -187,6 +189,23 @@ void Foam::spemModel::writeState() const
 {
     mkDir(runTime_.timePath()/"spem");
     if (particles_) writeParticleState();
+    if (!bodies_.empty())
+    {
+        IOdictionary state
+        (
+            IOobject
+            (
+                "rigidBodies", runTime_.timeName(), "spem", runTime_,
+                IOobject::NO_READ, IOobject::NO_WRITE, false
+            )
+        );
+        bodies_.writeState(state);
+        // All digits: the restart continues the same motion exactly
+        OFstream os(state.objectPath());
+        os.precision(17);
+        state.writeHeader(os);
+        state.writeData(os);
+    }
     if (!elements_) return;
 
     if (!convertedTriangles_.empty())
@@ -500,6 +519,19 @@ void Foam::spemModel::buildParticles
             if (mesh_.triangleRegion()[t] == r) fluidElements.push_back(t);
         }
     }
+    // The water a body displaces at t = 0 is not there
+    const std::vector<label> inside = trianglesInsideBodies();
+    if (!inside.empty())
+    {
+        std::sort(fluidElements.begin(), fluidElements.end());
+        std::vector<label> kept;
+        std::set_difference
+        (
+            fluidElements.begin(), fluidElements.end(),
+            inside.begin(), inside.end(), std::back_inserter(kept)
+        );
+        fluidElements.swap(kept);
+    }
     if (!fluid)
     {
         FatalIOErrorInFunction(*this)
@@ -610,6 +642,17 @@ void Foam::spemModel::createParticleHalf
     );
     // Also on the restart path of method SPEM
     particles_->setMassDamping(massDamping_);
+
+    // The rigid bodies seen by the particles
+    if (!bodies_.empty())
+    {
+        bodyCoupling_.reset
+        (
+            new bodyParticleCoupling(bodies_, spacing, layers, fluid.rho(), h)
+        );
+        Info<< "    rigid bodies: " << bodyCoupling_->size()
+            << " dummy particles" << nl;
+    }
 
     // The solids seen by the particles (eq. 27)
     if (elements_)
@@ -797,12 +840,136 @@ void Foam::spemModel::convert(const std::vector<label>& triangles)
 }
 
 
+std::vector<Foam::label> Foam::spemModel::trianglesInsideBodies() const
+{
+    std::vector<label> inside;
+    if (bodies_.empty()) return inside;
+    const std::vector<scalar>& X = mesh_.points();
+    const std::vector<label>& tri = mesh_.triangles();
+    const dictionary& regions = subDict("regions");
+    for (label t = 0; t < mesh_.nTriangles(); ++t)
+    {
+        const word& region = mesh_.regionNames()[mesh_.triangleRegion()[t]];
+        const dictionary* rd = regions.findDict(region);
+        if (!rd || rd->get<word>("model") != "weaklyCompressibleNewtonian")
+        {
+            continue;
+        }
+        const label* n = &tri[3*t];
+        const scalar cx = (X[2*n[0]] + X[2*n[1]] + X[2*n[2]])/3;
+        const scalar cy = (X[2*n[0] + 1] + X[2*n[1] + 1] + X[2*n[2] + 1])/3;
+        forAll(bodies_, b)
+        {
+            if (bodies_[b].contains(cx, cy))
+            {
+                inside.push_back(t);
+                break;
+            }
+        }
+    }
+    return inside;
+}
+
+
+std::vector<Foam::label> Foam::spemModel::trianglesNearBodies() const
+{
+    std::vector<label> near;
+    if (bodies_.empty() || !elements_ || !elementFluid_) return near;
+
+    // Within the support of a particle next to the body: converted before
+    // the element can touch it
+    const sphFluid::controls ctrl = sphFluid::controls::read(schemes_);
+    const scalar reach =
+        sphKernel::New(schemes_)->support()*ctrl.smoothingLengthRatio
+       *fluidSpacing_;
+    const elementModel& em = *elements_;
+    const std::vector<scalar>& x = em.positions();
+    const std::vector<label>& nodes = em.elementNodes();
+    forAll(bodies_, b)
+    {
+        const boundBox box = bodies_[b].boundingBox();
+        for (label r = 0; r < em.regions().size(); ++r)
+        {
+            if (!em.hasMaterial(r) || !em.material(r).isFluid()) continue;
+            for (label el = em.regions()[r].elemBegin; el < em.regions()[r].elemEnd; ++el)
+            {
+                for (label a = 0; a < 3; ++a)
+                {
+                    const scalar px = x[2*nodes[3*el + a]];
+                    const scalar py = x[2*nodes[3*el + a] + 1];
+                    if
+                    (
+                        px < box.min().x() - reach || px > box.max().x() + reach
+                     || py < box.min().y() - reach || py > box.max().y() + reach
+                    )
+                    {
+                        continue;
+                    }
+                    if (bodies_[b].signedDistance(px, py) < reach)
+                    {
+                        near.push_back(em.elementTriangle()[el]);
+                        break;
+                    }
+                }
+            }
+        }
+    }
+    return near;
+}
+
+
+void Foam::spemModel::setStructureParticles()
+{
+    if (!structureCoupling_ && !bodyCoupling_) return;
+    structureX_.clear();
+    structureV_.clear();
+    structureA_.clear();
+    structureM_.clear();
+    structureH_.clear();
+    if (structureCoupling_)
+    {
+        structureCoupling_->appendParticles
+        (
+            *elements_, lastDeltaT_, structureX_, structureV_, structureA_,
+            structureM_, structureH_
+        );
+    }
+    if (bodyCoupling_)
+    {
+        bodyCoupling_->appendParticles
+        (
+            bodies_, lastDeltaT_, structureX_, structureV_, structureA_,
+            structureM_, structureH_
+        );
+    }
+    particles_->setStructureParticles
+    (
+        label(structureM_.size()), structureX_.data(), structureV_.data(),
+        structureA_.data(), structureM_.data(), structureH_.data()
+    );
+}
+
+
+void Foam::spemModel::applyStructureForces()
+{
+    const scalar* F = particles_->structureParticleForce().data();
+    const scalar* x = structureX_.data();
+    if (structureCoupling_)
+    {
+        structureCoupling_->applyForces(*elements_, F);
+        F += 2*structureCoupling_->size();
+        x += 2*structureCoupling_->size();
+    }
+    if (bodyCoupling_) bodyCoupling_->applyForces(bodies_, x, F);
+}
+
+
 void Foam::spemModel::evaluateHalves(const bool correctInterface)
 {
     if (conversion_)
     {
         const std::vector<label> tris =
-            conversion_->trianglesToConvert(*elements_);
+            conversion_->trianglesToConvert(*elements_, trianglesNearBodies());
         if (!tris.empty()) convert(tris);
     }
     const bool coupled = elements_ && particles_ && coupling_;
@@ -821,25 +988,16 @@ void Foam::spemModel::evaluateHalves(const bool correctInterface)
     if (particles_)
     {
         if (coupled) coupling_->setGhosts(*elements_, *particles_);
-        if (structureCoupling_)
-        {
-            structureCoupling_->setParticles
-            (
-                *elements_, *particles_, lastDeltaT_
-            );
-        }
+        setStructureParticles();
         if (!particles_->evaluate())
         {
             stopWithLastGoodState(particles_->failure());
         }
         // The particles' forces on the elements: eq. (25) on the fluid
         // elements' interface (it sets the external forces), eq. (27) on
-        // the solids (it adds to them)
+        // the solids (it adds to them) and on the bodies
         if (coupled) coupling_->interfaceTraction(*elements_, *particles_);
-        if (structureCoupling_)
-        {
-            structureCoupling_->applyForces(*elements_, *particles_);
-        }
+        applyStructureForces();
     }
 }
 
@@ -874,6 +1032,7 @@ Foam::spemModel::spemModel(const Time& runTime)
     ),
     method_(methodTypeNames.get("method", schemes_)),
     mesh_(triMesh::read(runTime)),
+    bodies_(runTime),
     elementFluid_(nullptr),
     fluidSpacing_(0),
     lastDeltaT_(0),
@@ -945,12 +1104,43 @@ Foam::spemModel::spemModel(const Time& runTime)
         elements_->setGravity(g_[0], g_[1]);
         elements_->setMassDamping(alpha);
         readState();
+        // The water a body displaces at t = 0 is not there
+        const std::vector<label> inside = trianglesInsideBodies();
+        if (!inside.empty())
+        {
+            elements_->removeTriangles(mesh_, inside);
+            Info<< "    rigid bodies: " << inside.size() << " fluid elements"
+                << " inside them removed" << nl;
+        }
         setupConversion();
     }
     else
     {
         buildParticles(materials, density);
         particles_->setMassDamping(alpha);
+    }
+
+    // Restart: the bodies' state (after the set-up, which uses their
+    // configuration at t = 0)
+    if (!bodies_.empty())
+    {
+        IOobject bIO
+        (
+            "rigidBodies", runTime_.timeName(), "spem", runTime_,
+            IOobject::MUST_READ, IOobject::NO_WRITE, false
+        );
+        if (bIO.typeHeaderOk<IOdictionary>(true))
+        {
+            bodies_.readState(IOdictionary(bIO));
+            Info<< "Restart: read the rigid bodies' state from "
+                << bIO.objectPath() << nl;
+        }
+        forAll(bodies_, b)
+        {
+            Info<< "    rigid body " << bodies_[b].name() << ": "
+                << bodies_[b].shape().type() << ", "
+                << bodies_[b].motion().type() << nl;
+        }
     }
 
     Info<< "Mesh: " << mesh_.nPoints() << " nodes, " << mesh_.nTriangles()
@@ -1072,6 +1262,17 @@ void Foam::spemModel::advance()
     {
         stopWithLastGoodState(particles_->failure());
     }
+    // The bodies under the fluid's force of the last evaluation, from
+    // t^n = t^{n+1} - dt (the Time is already at the new time)
+    forAll(bodies_, b)
+    {
+        const scalar* F = bodyCoupling_ ? bodyCoupling_->force(b) : nullptr;
+        bodies_[b].advance
+        (
+            runTime_.value() - dt, dt, F ? F[0] : 0, F ? F[1] : 0,
+            bodyCoupling_ ? bodyCoupling_->moment(b) : 0, g_[0], g_[1]
+        );
+    }
     lastDeltaT_ = dt;
 }
 
@@ -1111,6 +1312,15 @@ void Foam::spemModel::report(Ostream& os) const
     {
         const scalar* f = structureCoupling_->force();
         os  << ", force on solids = (" << f[0] << ' ' << f[1] << ')';
+    }
+    forAll(bodies_, b)
+    {
+        const rigidBody& body = bodies_[b];
+        const scalar* f = bodyCoupling_ ? bodyCoupling_->force(b) : nullptr;
+        os  << ", body " << body.name() << " at (" << body.position().x()
+            << ' ' << body.position().y() << ") velocity ("
+            << body.velocity().x() << ' ' << body.velocity().y()
+            << ") force (" << (f ? f[0] : 0) << ' ' << (f ? f[1] : 0) << ')';
     }
 }
 

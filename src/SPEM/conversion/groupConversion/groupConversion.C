@@ -152,10 +152,15 @@ Foam::groupConversion::presetTriangles(const triMesh& mesh) const
 
 
 std::vector<Foam::label>
-Foam::groupConversion::trianglesToConvert(const elementModel& elements)
+Foam::groupConversion::trianglesToConvert
+(
+    const elementModel& elements,
+    const std::vector<label>& forcedTriangles
+)
 {
     // criterion none: no run-time conversion, no cost
-    if (criterion_->type() == "none") return std::vector<label>();
+    const bool none = criterion_->type() == "none";
+    if (none && forcedTriangles.empty()) return std::vector<label>();
 
     const std::vector<scalar>& x = elements.positions();
     const std::vector<scalar>& X = elements.referencePositions();
@@ -164,7 +169,7 @@ Foam::groupConversion::trianglesToConvert(const elementModel& elements)
     const distortionCriterion& criterion = *criterion_;
     distorted_.assign(elements.nElements(), 0);
 
-    for (label r = 0; r < elements.regions().size(); ++r)
+    for (label r = 0; r < elements.regions().size() && !none; ++r)
     {
         if (!elements.hasMaterial(r) || !elements.material(r).isFluid())
         {
@@ -193,6 +198,13 @@ Foam::groupConversion::trianglesToConvert(const elementModel& elements)
         if (!distorted_[el]) continue;
         const label g = triangleGroup_[triangle[el]];
         if (g < 0) continue;
+        convert[g] = true;
+        any = true;
+    }
+    for (const label t : forcedTriangles)
+    {
+        const label g = triangleGroup_[t];
+        if (g < 0 || elements.removed(t)) continue;
         convert[g] = true;
         any = true;
     }

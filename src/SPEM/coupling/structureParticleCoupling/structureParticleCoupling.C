@@ -1,6 +1,5 @@
 #include "structureParticleCoupling.H"
 #include "elementModel.H"
-#include "sphFluid.H"
 
 #include <algorithm>
 #include <cmath>
@@ -243,28 +242,27 @@ Foam::structureParticleCoupling::structureParticleCoupling
         }
     }
 
-    const label n = size();
-    x_.resize(2*n);
-    v_.resize(2*n);
-    a_.assign(2*n, 0);
-    vOld_.resize(2*n);
-    h_.assign(n, smoothingLength_);
+    vOld_.assign(2*size(), 0);
 }
 
 
 // * * * * * * * * * * * * * * * Member Functions  * * * * * * * * * * * * * //
 
-void Foam::structureParticleCoupling::setParticles
+void Foam::structureParticleCoupling::appendParticles
 (
     const elementModel& elements,
-    sphFluid& particles,
-    const scalar dt
+    const scalar dt,
+    std::vector<scalar>& xOut,
+    std::vector<scalar>& vOut,
+    std::vector<scalar>& aOut,
+    std::vector<scalar>& mOut,
+    std::vector<scalar>& hOut
 )
 {
     const label n = size();
-    if (n == 0) return;
     const std::vector<scalar>& x = elements.positions();
     const std::vector<scalar>& v = elements.velocities();
+    const bool accelerate = haveOldVelocity_ && dt > 0;
 
     for (label k = 0; k < n; ++k)
     {
@@ -278,41 +276,33 @@ void Foam::structureParticleCoupling::setParticles
             vx += w[a]*v[2*nodes[a]];
             vy += w[a]*v[2*nodes[a] + 1];
         }
-        x_[2*k] = px;
-        x_[2*k + 1] = py;
-        // The nodes' velocities of the last half step: the acceleration
-        // over the last step from their difference
-        if (haveOldVelocity_ && dt > 0)
-        {
-            a_[2*k] = (vx - vOld_[2*k])/dt;
-            a_[2*k + 1] = (vy - vOld_[2*k + 1])/dt;
-        }
-        v_[2*k] = vx;
-        v_[2*k + 1] = vy;
+        xOut.push_back(px);
+        xOut.push_back(py);
+        vOut.push_back(vx);
+        vOut.push_back(vy);
+        // The nodes' velocities are those of the last half step: the
+        // acceleration over the last step from their difference
+        aOut.push_back(accelerate ? (vx - vOld_[2*k])/dt : 0);
+        aOut.push_back(accelerate ? (vy - vOld_[2*k + 1])/dt : 0);
+        vOld_[2*k] = vx;
+        vOld_[2*k + 1] = vy;
+        mOut.push_back(m_[k]);
+        hOut.push_back(smoothingLength_);
     }
-    vOld_ = v_;
     haveOldVelocity_ = true;
-
-    particles.setStructureParticles
-    (
-        n, x_.data(), v_.data(), a_.data(), m_.data(), h_.data()
-    );
 }
 
 
 void Foam::structureParticleCoupling::applyForces
 (
     elementModel& elements,
-    const sphFluid& particles
+    const scalar* F
 )
 {
     force_[0] = 0;
     force_[1] = 0;
-    const label n = size();
-    if (n == 0) return;
     std::vector<scalar>& f = elements.externalForce();
-    const std::vector<scalar>& F = particles.structureParticleForce();
-    for (label k = 0; k < n; ++k)
+    for (label k = 0; k < size(); ++k)
     {
         const label* nodes = &nodes_[3*k];
         const scalar* w = &weight_[3*k];
