@@ -1,4 +1,5 @@
 #include "pressureProbe.H"
+#include "spemModel.H"
 #include "Time.H"
 #include "addToRunTimeSelectionTable.H"
 
@@ -21,7 +22,9 @@ Foam::functionObjects::pressureProbe::pressureProbe
     const dictionary& dict
 )
 :
-    spemFunctionObject(name, runTime, dict)
+    spemFunctionObject(name, runTime, dict),
+    normalOffset_(0),
+    body_(-1)
 {
     read(dict);
     wordList columns(locations_.size()/2);
@@ -32,7 +35,14 @@ Foam::functionObjects::pressureProbe::pressureProbe
         for (label i = 0; i < columns.size(); ++i)
         {
             os  << "# Probe " << i << " (" << Foam::name(locations_[2*i])
-                << ' ' << Foam::name(locations_[2*i + 1]) << ')' << nl;
+                << ' ' << Foam::name(locations_[2*i + 1]) << ')';
+            if (!bodyName_.empty())
+            {
+                os  << " at t = 0, moving with body " << bodyName_
+                    << ", offset " << normalOffset_
+                    << " m along its outward normal";
+            }
+            os  << nl;
         }
     }
     writeColumns(columns);
@@ -54,7 +64,67 @@ bool Foam::functionObjects::pressureProbe::read(const dictionary& dict)
         locations_[2*i] = points[i].x();
         locations_[2*i + 1] = points[i].y();
     }
+    bodyName_ = dict.getOrDefault<word>("body", word::null);
+    normalOffset_ = dict.getOrDefault<scalar>("normalOffset", 0);
+    if (bodyName_.empty() && dict.found("normalOffset"))
+    {
+        FatalIOErrorInFunction(dict)
+            << "normalOffset is the distance from the surface of a rigid"
+            << " body: it needs the keyword body" << exit(FatalIOError);
+    }
+    body_ = -1;
     return true;
+}
+
+
+void Foam::functionObjects::pressureProbe::findBody()
+{
+    if (bodyName_.empty() || body_ >= 0) return;
+
+    const rigidBodies& bodies = model().bodies();
+    const label b = bodies.findBody(bodyName_);
+    if (b < 0)
+    {
+        wordList names(bodies.size());
+        forAll(bodies, i) names[i] = bodies[i].name();
+        FatalErrorInFunction
+            << "Function object " << name() << ": no rigid body "
+            << bodyName_ << " in constant/rigidBodyProperties; bodies: "
+            << names << exit(FatalError);
+    }
+
+    // The offset along the outward normal at the closest surface point, in
+    // the reference configuration: the offset point is body-fixed too
+    const rigidBodyShape& shape = bodies[b].shape();
+    referenceLocations_ = locations_;
+    for (size_t i = 0; i < locations_.size()/2; ++i)
+    {
+        vector2D closest, normal;
+        shape.signedDistance
+        (
+            locations_[2*i], locations_[2*i + 1], closest, normal
+        );
+        referenceLocations_[2*i] += normalOffset_*normal.x();
+        referenceLocations_[2*i + 1] += normalOffset_*normal.y();
+    }
+    body_ = b;
+}
+
+
+const std::vector<Foam::scalar>&
+Foam::functionObjects::pressureProbe::currentLocations()
+{
+    if (bodyName_.empty()) return locations_;
+    findBody();
+    model().bodies()[body_].toCurrent(referenceLocations_, current_);
+    return current_;
+}
+
+
+bool Foam::functionObjects::pressureProbe::execute()
+{
+    findBody();
+    return spemFunctionObject::execute();
 }
 
 
@@ -65,9 +135,10 @@ bool Foam::functionObjects::pressureProbe::write()
     OFstream& os = file();
     os  << time_.value();
     const spemModel& m = model();
-    for (size_t i = 0; i < locations_.size()/2; ++i)
+    const std::vector<scalar>& locations = currentLocations();
+    for (size_t i = 0; i < locations.size()/2; ++i)
     {
-        const scalar px = locations_[2*i], py = locations_[2*i + 1];
+        const scalar px = locations[2*i], py = locations[2*i + 1];
         scalar p = 0;
         if (m.hasElements() && elementPressure(m.elements(), px, py, p))
         {
