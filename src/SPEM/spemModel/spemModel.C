@@ -742,6 +742,8 @@ void Foam::spemModel::setupConversion()
     const scalar ratio =
         sphFluid::controls::read(schemes_).smoothingLengthRatio;
     fluidSpacing_ = std::sqrt(areaSum/nFluid);
+    bodyReach_ =
+        sphKernel::New(schemes_)->support()*ratio*fluidSpacing_;
     if (method_ == methodType::SPEM)
     {
         conversion_.reset
@@ -878,10 +880,7 @@ std::vector<Foam::label> Foam::spemModel::trianglesNearBodies() const
 
     // Within the support of a particle next to the body: converted before
     // the element can touch it
-    const sphFluid::controls ctrl = sphFluid::controls::read(schemes_);
-    const scalar reach =
-        sphKernel::New(schemes_)->support()*ctrl.smoothingLengthRatio
-       *fluidSpacing_;
+    const scalar reach = bodyReach_;
     const elementModel& em = *elements_;
     const std::vector<scalar>& x = em.positions();
     const std::vector<label>& nodes = em.elementNodes();
@@ -1035,6 +1034,7 @@ Foam::spemModel::spemModel(const Time& runTime)
     bodies_(runTime),
     elementFluid_(nullptr),
     fluidSpacing_(0),
+    bodyReach_(0),
     lastDeltaT_(0),
     massDamping_(0),
     lastWrittenTime_(-GREAT)
