@@ -1939,4 +1939,231 @@ TEST_F(Solver, pressureProbeNormalOffsetWithoutBodyStops)
 }
 
 
+// * * * * * * * * * * * * * * freeSurfaceProfile  * * * * * * * * * * * * * //
+
+namespace
+{
+
+//- The profile file of the latest time written by a freeSurfaceProfile
+//  function object: postProcessing/<name>/0/<time>/<name>.dat
+fs::path latestProfile(const fs::path& caseDir, const std::string& name)
+{
+    const fs::path dir = caseDir/"postProcessing"/name/"0";
+    fs::path latest;
+    double latestTime = -1;
+    if (!fs::is_directory(dir)) return latest;
+    for (const auto& entry : fs::directory_iterator(dir))
+    {
+        if (!entry.is_directory()) continue;
+        try
+        {
+            const double t = std::stod(entry.path().filename().string());
+            if (t > latestTime)
+            {
+                latestTime = t;
+                latest = entry.path()/(name + ".dat");
+            }
+        }
+        catch (...) {}
+    }
+    return latest;
+}
+
+
+//- A freeSurfaceProfile function object entry
+std::string profileEntry
+(
+    const std::string& name,
+    const std::string& extra,
+    const std::string& writeInterval
+)
+{
+    return
+        "    " + name + "\n    {\n"
+        "        type            freeSurfaceProfile;\n" + extra
+      + "        writeControl    timeStep;\n"
+        "        writeInterval   " + writeInterval + ";\n    }\n";
+}
+
+
+//- Points (x, y) of a profile file; fails the test if a line is not two
+//  numbers
+std::vector<std::pair<double, double>> profilePoints(const fs::path& file)
+{
+    const dataFile data(file);
+    std::vector<std::pair<double, double>> points;
+    for (std::size_t r = 0; r < data.rows.size(); ++r)
+    {
+        EXPECT_EQ(data.rows[r].size(), 2u) << "line " << r << " of " << file;
+        points.emplace_back(data.value(r, 0), data.value(r, 1));
+    }
+    return points;
+}
+
+
+bool sortedByX(const std::vector<std::pair<double, double>>& points)
+{
+    for (std::size_t p = 1; p < points.size(); ++p)
+    {
+        if (points[p].first < points[p - 1].first) return false;
+    }
+    return true;
+}
+
+} // End anonymous namespace
+
+
+TEST_F(Solver, freeSurfaceProfileOfStillElementColumnIsItsTopNodes)
+{
+    // Method SPEM, no conversion: the free sides are the top patch's (the
+    // side walls and the bottom are walls), so the profile is the nx + 1
+    // top nodes at y = H, x = 0 .. L; xRange keeps those inside it
+    setControl("endTime", "0.01");
+    functions_ =
+        profileEntry("profile", "", "10")
+      + profileEntry("middle", "        xRange          (0.1 0.3);\n", "10");
+    runExpectingSuccess();
+    if (HasFailure()) return;
+
+    const fs::path file = latestProfile(caseDir_, "profile");
+    ASSERT_FALSE(file.empty()) << "no profile written";
+    const auto points = profilePoints(file);
+    ASSERT_EQ(points.size(), std::size_t(nCellsX + 1)) << readText(file);
+    EXPECT_TRUE(sortedByX(points)) << readText(file);
+    const double dx = columnWidth/nCellsX;
+    for (std::size_t p = 0; p < points.size(); ++p)
+    {
+        // The nodes have moved by far less than a millimetre in 10 steps
+        EXPECT_NEAR(points[p].first, p*dx, 1e-3) << readText(file);
+        EXPECT_NEAR(points[p].second, columnHeight, 1e-3) << readText(file);
+    }
+
+    const auto middle = profilePoints(latestProfile(caseDir_, "middle"));
+    ASSERT_EQ(middle.size(), 2u);
+    EXPECT_NEAR(middle[0].first, 2*dx, 1e-3);
+    EXPECT_NEAR(middle[1].first, 3*dx, 1e-3);
+
+    // The summary: Time points particles nodes
+    const dataFile summary(functionObjectFile("profile"));
+    ASSERT_GE(summary.rows.size(), 1u);
+    const std::size_t last = summary.rows.size() - 1;
+    EXPECT_NEAR(summary.value(last, 0), 0.01, 1e-9);
+    EXPECT_EQ(summary.value(last, 1), nCellsX + 1);
+    EXPECT_EQ(summary.value(last, 2), 0);
+    EXPECT_EQ(summary.value(last, 3), nCellsX + 1);
+}
+
+
+TEST_F(Solver, freeSurfaceProfileOfStillParticleColumnIsFlatAtItsHeight)
+{
+    // Method SPH, started hydrostatic, 100 steps (0.04 s): the particles of
+    // the top row sit at the barycentres of the top triangles, dy/3 below
+    // the surface y = H. A particle centre lies half a spacing s inside the
+    // water, so the surface of the particles is y = H - s/2: the highest
+    // particle in each cell-wide bin must lie within s/2 of it, all at the
+    // same height within s/4. Without topmostOnly, every point must be a
+    // surface particle: none below the top few rows (the bottom and the
+    // side walls are not free)
+    edit(regions_, "mu      1e-3;\n", "mu      1e-3;\n        initialPressure hydrostatic;\n");
+    useSPH();
+    setControl("endTime", "0.04");
+    setControl("writeInterval", "100");
+    const double dx = columnWidth/nCellsX;
+    const double dy = columnHeight/nCellsY;
+    const double s = std::sqrt(0.5*dx*dy);
+    std::ostringstream bin;
+    bin.precision(17);
+    bin << "        topmostOnly     yes;\n        binWidth        " << dx
+        << ";\n";
+    functions_ =
+        profileEntry("points", "", "100")
+      + profileEntry("profile", bin.str(), "100");
+    runExpectingSuccess();
+    if (HasFailure()) return;
+
+    const fs::path file = latestProfile(caseDir_, "profile");
+    ASSERT_FALSE(file.empty()) << "no profile written";
+    const auto profile = profilePoints(file);
+    ASSERT_EQ(profile.size(), std::size_t(nCellsX)) << readText(file);
+    EXPECT_TRUE(sortedByX(profile)) << readText(file);
+    double yMin = 1e30, yMax = -1e30;
+    for (const auto& p : profile)
+    {
+        EXPECT_NEAR(p.second, columnHeight - 0.5*s, 0.5*s) << readText(file);
+        yMin = std::min(yMin, p.second);
+        yMax = std::max(yMax, p.second);
+    }
+    std::cout
+        << "SPH still column: surface particles at y = " << yMin << " .. "
+        << yMax << ", H - s/2 = " << columnHeight - 0.5*s << " (s = " << s
+        << ")" << std::endl;
+    EXPECT_LT(yMax - yMin, 0.25*s) << readText(file);
+
+    const fs::path allFile = latestProfile(caseDir_, "points");
+    const auto points = profilePoints(allFile);
+    EXPECT_GE(points.size(), std::size_t(nCellsX)) << readText(allFile);
+    EXPECT_TRUE(sortedByX(points)) << readText(allFile);
+    for (const auto& p : points)
+    {
+        EXPECT_GT(p.second, columnHeight - 3*s)
+            << "a bulk or wall particle taken for the surface\n"
+            << readText(allFile);
+    }
+}
+
+
+TEST_F(Solver, freeSurfaceProfileSkipsTheElementParticleInterface)
+{
+    // Method SPEM with the upper half of the column preset as particles:
+    // the elements' top sides border converted triangles, covered by the
+    // particles, so they are not free surface; the profile is the top of
+    // the particles, as with method SPH
+    schemes_ =
+        "method          SPEM;\n"
+        "conversion\n{\n    presetParticleRegions\n    {\n"
+        "        top { type box; min (-1 0.5 0); max (1 2 0); }\n"
+        "    }\n}\n";
+    edit(regions_, "mu      1e-3;\n", "mu      1e-3;\n        initialPressure hydrostatic;\n");
+    setControl("endTime", "0.01");
+    const double dx = columnWidth/nCellsX;
+    const double dy = columnHeight/nCellsY;
+    const double s = std::sqrt(0.5*dx*dy);
+    functions_ = profileEntry("points", "", "10");
+    runExpectingSuccess();
+    if (HasFailure()) return;
+
+    const fs::path file = latestProfile(caseDir_, "points");
+    ASSERT_FALSE(file.empty()) << "no profile written";
+    const auto points = profilePoints(file);
+    EXPECT_GE(points.size(), std::size_t(nCellsX)) << readText(file);
+    EXPECT_TRUE(sortedByX(points)) << readText(file);
+    for (const auto& p : points)
+    {
+        EXPECT_GT(p.second, columnHeight - 3*s)
+            << "a point of the element-particle interface (y = 0.5) or"
+               " of the bulk taken for the surface\n" << readText(file);
+    }
+    const dataFile summary(functionObjectFile("points"));
+    ASSERT_GE(summary.rows.size(), 1u);
+    EXPECT_EQ(summary.value(summary.rows.size() - 1, 3), 0)
+        << "element nodes in the profile";
+}
+
+
+TEST_F(Solver, freeSurfaceProfileRejectsBadInputNamingTheKeyword)
+{
+    functions_ = profileEntry("profile", "        xRange (0.3 0.1);\n", "1");
+    std::string text = runExpectingFatalError();
+    expectInLog(text, {"FATAL IO ERROR", "xRange"});
+
+    functions_ = profileEntry("profile", "        binWidth 0;\n", "1");
+    text = runExpectingFatalError();
+    expectInLog(text, {"FATAL IO ERROR", "binWidth"});
+
+    functions_ = profileEntry("profile", "        minDivR -1;\n", "1");
+    text = runExpectingFatalError();
+    expectInLog(text, {"FATAL IO ERROR", "minDivR"});
+}
+
+
 // ************************************************************************* //

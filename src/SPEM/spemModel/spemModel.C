@@ -800,6 +800,17 @@ void Foam::spemModel::setupConversion()
             if (fluidTri[t]) preset.push_back(t);
         }
     }
+    // Not the triangles taken out already: those inside a rigid body at
+    // t = 0 (a preset region around a body holds some)
+    preset.erase
+    (
+        std::remove_if
+        (
+            preset.begin(), preset.end(),
+            [&](const label t) { return elements_->removed(t); }
+        ),
+        preset.end()
+    );
     if (!preset.empty())
     {
         convert(preset);
