@@ -796,6 +796,41 @@ Foam::label Foam::sphFluid::removeParticles(const particleSet::kind kind)
 }
 
 
+Foam::label Foam::sphFluid::appendParticles
+(
+    const particleSet::kind kind,
+    const label n,
+    const scalar* x,
+    const scalar* v,
+    const scalar* m,
+    const scalar* h
+)
+{
+    const label first = particles_.size();
+    particles_.resize(first + n);
+    oldPosition_.resize(2*(first + n));
+    oldVelocity_.resize(2*(first + n));
+    oldDensity_.resize(first + n);
+    for (label k = 0; k < n; ++k)
+    {
+        const label i = first + k;
+        for (int c = 0; c < 2; ++c)
+        {
+            particles_.positions()[2*i + c] = x[2*k + c];
+            particles_.velocities()[2*i + c] = v[2*k + c];
+            oldPosition_[2*i + c] = x[2*k + c];
+            oldVelocity_[2*i + c] = v[2*k + c];
+        }
+        particles_.mass()[i] = m[k];
+        particles_.smoothingLength()[i] = h[k];
+        particles_.kinds()[i] = kind;
+        particles_.level()[i] = 0;
+    }
+    resizeFields();
+    return first;
+}
+
+
 void Foam::sphFluid::setStructureParticles
 (
     const label n,
@@ -809,35 +844,19 @@ void Foam::sphFluid::setStructureParticles
     if (nStructure_ > 0) removeParticles(particleSet::kind::structure);
     nStructure_ = 0;
 
-    const label first = particles_.size();
-    particles_.resize(first + n);
-    oldPosition_.resize(2*(first + n));
-    oldVelocity_.resize(2*(first + n));
-    oldDensity_.resize(first + n);
+    const label first = appendParticles(particleSet::kind::structure, n, x, v, m, h);
     structureAcceleration_.assign(a, a + 2*n);
     structureParticleForce_.assign(2*n, 0);
     for (label k = 0; k < n; ++k)
     {
         const label i = first + k;
-        for (int c = 0; c < 2; ++c)
-        {
-            particles_.positions()[2*i + c] = x[2*k + c];
-            particles_.velocities()[2*i + c] = v[2*k + c];
-            oldPosition_[2*i + c] = x[2*k + c];
-            oldVelocity_[2*i + c] = v[2*k + c];
-        }
         // Pressure and density follow from the fluid in the wall pass
         particles_.density()[i] = rho0_;
         oldDensity_[i] = rho0_;
         particles_.pressure()[i] = 0;
-        particles_.mass()[i] = m[k];
-        particles_.smoothingLength()[i] = h[k];
-        particles_.kinds()[i] = particleSet::kind::structure;
-        particles_.level()[i] = 0;
         particles_.id()[i] = k;
     }
     nStructure_ = n;
-    resizeFields();
 }
 
 
@@ -854,33 +873,18 @@ void Foam::sphFluid::setGhosts
     if (nGhost_ > 0) removeParticles(particleSet::kind::ghost);
     nGhost_ = 0;
 
-    const label first = particles_.size();
-    particles_.resize(first + n);
-    oldPosition_.resize(2*(first + n));
-    oldVelocity_.resize(2*(first + n));
-    oldDensity_.resize(first + n);
+    const label first = appendParticles(particleSet::kind::ghost, n, x, v, m, h);
     const scalar c2 = c_*c_;
     for (label g = 0; g < n; ++g)
     {
         const label i = first + g;
-        for (int c = 0; c < 2; ++c)
-        {
-            particles_.positions()[2*i + c] = x[2*g + c];
-            particles_.velocities()[2*i + c] = v[2*g + c];
-            oldPosition_[2*i + c] = x[2*g + c];
-            oldVelocity_[2*i + c] = v[2*g + c];
-        }
         particles_.density()[i] = rho[g];
         oldDensity_[i] = rho[g];
         // Eq. (7), as the element's pressure
         particles_.pressure()[i] = c2*(rho[g] - rho0_);
-        particles_.mass()[i] = m[g];
-        particles_.smoothingLength()[i] = h[g];
-        particles_.kinds()[i] = particleSet::kind::ghost;
         particles_.id()[i] = -1;
     }
     nGhost_ = n;
-    resizeFields();
 }
 
 
