@@ -32,6 +32,8 @@ Description
 #include "unitConversion.H"
 #include "testMeshes.H"
 
+#include "testDictionaries.H"
+
 #include <gtest/gtest.h>
 
 #include <array>
@@ -46,43 +48,8 @@ using namespace Foam;
 namespace
 {
 
-//- Dictionary from its text
-dictionary dictionaryFrom(const std::string& text)
-{
-    IStringStream is(text);
-    return dictionary(is);
-}
-
-//- The message of the FatalIOError raised by f (a test failure if none),
-//  checked to name every one of the given words
-std::string fatalIOErrorOf
-(
-    const std::function<void()>& f,
-    std::initializer_list<const char*> mustName = {}
-)
-{
-    const bool wasThrowing = FatalIOError.throwExceptions();
-    std::string message;
-    bool thrown = false;
-    try
-    {
-        f();
-    }
-    catch (const IOerror& err)
-    {
-        message = err.message();
-        thrown = true;
-    }
-    FatalIOError.throwExceptions(wasThrowing);
-
-    EXPECT_TRUE(thrown) << "no FatalIOError";
-    for (const char* word : mustName)
-    {
-        EXPECT_NE(message.find(word), std::string::npos)
-            << "'" << word << "' not named in\n" << message;
-    }
-    return message;
-}
+using testDictionaries::dictionaryFrom;
+using testDictionaries::fatalIOErrorOf;
 
 //- A triangle: three (x, y) nodes
 using triangle = std::array<std::array<scalar, 2>, 3>;

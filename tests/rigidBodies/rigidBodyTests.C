@@ -35,6 +35,8 @@ Description
 #include "Time.H"
 #include "mathematicalConstants.H"
 
+#include "testDictionaries.H"
+
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -51,43 +53,8 @@ using namespace Foam;
 namespace
 {
 
-//- Dictionary from its text
-dictionary dictionaryFrom(const std::string& text)
-{
-    IStringStream is(text);
-    return dictionary(is);
-}
-
-//- The message of the FatalIOError raised by f (a test failure if none),
-//  checked to name every one of the given words
-std::string fatalIOErrorOf
-(
-    const std::function<void()>& f,
-    std::initializer_list<const char*> mustName = {}
-)
-{
-    const bool wasThrowing = FatalIOError.throwExceptions();
-    std::string message;
-    bool thrown = false;
-    try
-    {
-        f();
-    }
-    catch (const IOerror& err)
-    {
-        message = err.message();
-        thrown = true;
-    }
-    FatalIOError.throwExceptions(wasThrowing);
-
-    EXPECT_TRUE(thrown) << "no FatalIOError";
-    for (const char* word : mustName)
-    {
-        EXPECT_NE(message.find(word), std::string::npos)
-            << "'" << word << "' not named in\n" << message;
-    }
-    return message;
-}
+using testDictionaries::dictionaryFrom;
+using testDictionaries::fatalIOErrorOf;
 
 //- A body from the text of its dictionary
 std::unique_ptr<rigidBody> bodyFrom(const std::string& text)
