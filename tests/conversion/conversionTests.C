@@ -26,6 +26,7 @@ Description
 #include "stretchRatio.H"
 #include "presetParticleRegion.H"
 #include "patchDistanceRegion.H"
+#include "rigidBodies.H"
 #include "dictionary.H"
 #include "IStringStream.H"
 #include "OStringStream.H"
@@ -564,6 +565,75 @@ TEST(PresetParticleRegions, patchDistanceSelectsPointsNearItsPatchesOnly)
         regionFrom("type patchDistance; patches (bottom left); distance 0.2;");
     EXPECT_TRUE(bottomAndLeft->contains(0.05, 0.5));
     EXPECT_FALSE(bottomAndLeft->contains(0.95, 0.5));
+}
+
+
+TEST(PresetParticleRegions, patchDistanceSelectsPointsNearARigidBody)
+{
+    // A cylinder of radius 0.2 at (0.5, 0.5) and a wedge-like triangle
+    const rigidBodies bodies
+    (
+        dictionaryFrom
+        (
+            "bodies {"
+            " cylinder { shape circle; centre (0.5 0.5 0); radius 0.2;"
+            " motion prescribed; velocity (0 0 0); }"
+            " wedge { shape polygon; points ((2 0 0) (3 0 0) (2.5 1 0));"
+            " motion prescribed; velocity (0 0 0); } }"
+        )
+    );
+    const triMesh mesh = unitSquare();
+    const autoPtr<presetParticleRegion> nearCylinder = presetParticleRegion::New
+    (
+        "test",
+        dictionaryFrom("type patchDistance; bodies (cylinder); distance 0.1;"),
+        mesh, &bodies
+    );
+    EXPECT_TRUE(nearCylinder->contains(0.5, 0.5));      // inside the body
+    EXPECT_TRUE(nearCylinder->contains(0.79, 0.5));     // 0.09 from it
+    EXPECT_FALSE(nearCylinder->contains(0.81, 0.5));    // 0.11 from it
+    EXPECT_FALSE(nearCylinder->contains(0.5, 0.05));    // near bottom only
+    EXPECT_FALSE(nearCylinder->contains(2.5, -0.05));   // near the wedge
+
+    // Patches and bodies together: the union
+    const autoPtr<presetParticleRegion> both = presetParticleRegion::New
+    (
+        "test",
+        dictionaryFrom
+        (
+            "type patchDistance; patches (bottom); bodies (wedge);"
+            " distance 0.1;"
+        ),
+        mesh, &bodies
+    );
+    EXPECT_TRUE(both->contains(0.5, 0.05));
+    EXPECT_TRUE(both->contains(2.5, -0.05));
+    EXPECT_FALSE(both->contains(0.79, 0.5));
+
+    // A body that does not exist, no bodies at all, nothing to measure from
+    fatalIOErrorOf
+    (
+        [&]
+        {
+            presetParticleRegion::New
+            (
+                "test",
+                dictionaryFrom("type patchDistance; bodies (sphere); distance 0.1;"),
+                mesh, &bodies
+            );
+        },
+        {"sphere", "cylinder", "wedge"}
+    );
+    fatalIOErrorOf
+    (
+        [] { regionFrom("type patchDistance; bodies (cylinder); distance 0.1;"); },
+        {"cylinder"}
+    );
+    fatalIOErrorOf
+    (
+        [] { regionFrom("type patchDistance; distance 0.1;"); },
+        {"patches", "bodies"}
+    );
 }
 
 

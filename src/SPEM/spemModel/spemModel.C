@@ -751,7 +751,7 @@ void Foam::spemModel::setupConversion()
             new groupConversion
             (
                 schemes_.subOrEmptyDict("conversion"), mesh_, fluidTri,
-                ratio*std::sqrt(areaMax)
+                ratio*std::sqrt(areaMax), &bodies_
             )
         );
         conversion_->describe(Info);
@@ -859,15 +859,19 @@ std::vector<Foam::label> Foam::spemModel::trianglesInsideBodies() const
     if (bodies_.empty()) return inside;
     const std::vector<scalar>& X = mesh_.points();
     const std::vector<label>& tri = mesh_.triangles();
+    // The fluid regions (the one fluid model), from the dictionary: the
+    // materials may already belong to the element model
     const dictionary& regions = subDict("regions");
+    std::vector<bool> fluidRegion(mesh_.nRegions(), false);
+    forAll(mesh_.regionNames(), r)
+    {
+        const dictionary* rd = regions.findDict(mesh_.regionNames()[r]);
+        fluidRegion[r] =
+            rd && rd->get<word>("model") == "weaklyCompressibleNewtonian";
+    }
     for (label t = 0; t < mesh_.nTriangles(); ++t)
     {
-        const word& region = mesh_.regionNames()[mesh_.triangleRegion()[t]];
-        const dictionary* rd = regions.findDict(region);
-        if (!rd || rd->get<word>("model") != "weaklyCompressibleNewtonian")
-        {
-            continue;
-        }
+        if (!fluidRegion[mesh_.triangleRegion()[t]]) continue;
         const label* n = &tri[3*t];
         const scalar cx = (X[2*n[0]] + X[2*n[1]] + X[2*n[2]])/3;
         const scalar cy = (X[2*n[0] + 1] + X[2*n[1] + 1] + X[2*n[2] + 1])/3;

@@ -12,11 +12,12 @@ Foam::groupConversion::groupConversion
     const dictionary& conversionDict,
     const triMesh& mesh,
     const std::vector<bool>& fluidTriangle,
-    const scalar hMax
+    const scalar hMax,
+    const rigidBodies* bodies
 )
 :
     criterion_(distortionCriterion::New(conversionDict)),
-    presetRegions_(readPresetParticleRegions(conversionDict, mesh)),
+    presetRegions_(readPresetParticleRegions(conversionDict, mesh, bodies)),
     groupSizeFactor_
     (
         conversionDict.getOrDefault<scalar>("groupSizeFactor", 1.5)

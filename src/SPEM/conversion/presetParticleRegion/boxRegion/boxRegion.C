@@ -14,7 +14,8 @@ Foam::boxRegion::boxRegion
 (
     const word& name,
     const dictionary& dict,
-    const triMesh& mesh
+    const triMesh& mesh,
+    const rigidBodies* bodies
 )
 :
     presetParticleRegion(name)

@@ -21,15 +21,24 @@ Foam::patchDistanceRegion::patchDistanceRegion
 (
     const word& name,
     const dictionary& dict,
-    const triMesh& mesh
+    const triMesh& mesh,
+    const rigidBodies* bodies
 )
 :
     presetParticleRegion(name)
 {
-    checkKeywords(dict, {"type", "patches", "distance"});
+    checkKeywords(dict, {"type", "patches", "bodies", "distance"});
 
-    const wordList patches(dict.get<wordList>("patches"));
-    if (patches.empty())
+    if (!dict.found("patches") && !dict.found("bodies"))
+    {
+        FatalIOErrorInFunction(dict)
+            << dict.name() << " needs 'patches' (mesh patches: "
+            << mesh.patchNames() << ") or 'bodies' (rigid bodies of"
+            << " constant/rigidBodyProperties), or both" << exit(FatalIOError);
+    }
+
+    const wordList patches(dict.getOrDefault<wordList>("patches", wordList()));
+    if (dict.found("patches") && patches.empty())
     {
         FatalIOErrorInFunction(dict)
             << "Entry 'patches' of " << dict.name() << " is empty. Mesh"
@@ -50,6 +59,21 @@ Foam::patchDistanceRegion::patchDistanceRegion
         selected[patchi] = true;
     }
 
+    for (const word& body : dict.getOrDefault<wordList>("bodies", wordList()))
+    {
+        const label b = bodies ? bodies->findBody(body) : -1;
+        if (b < 0)
+        {
+            wordList names(bodies ? bodies->size() : 0);
+            forAll(names, i) names[i] = (*bodies)[i].name();
+            FatalIOErrorInFunction(dict)
+                << "Unknown rigid body " << body << " in entry 'bodies' of "
+                << dict.name() << ". Bodies of constant/rigidBodyProperties: "
+                << names << exit(FatalIOError);
+        }
+        bodies_.push_back(&(*bodies)[b]);
+    }
+
     distance_ = readPositive(dict, "distance");
 
     const std::vector<scalar>& points = mesh.points();
@@ -68,6 +92,11 @@ Foam::patchDistanceRegion::patchDistanceRegion
 
 bool Foam::patchDistanceRegion::contains(const scalar x, const scalar y) const
 {
+    for (const rigidBody* body : bodies_)
+    {
+        if (body->signedDistance(x, y) <= distance_) return true;
+    }
+
     const scalar distance2 = distance_*distance_;
     const label n = nSegments();
     for (label s = 0; s < n; ++s)

@@ -17,7 +17,8 @@ Foam::polygonRegion::polygonRegion
 (
     const word& name,
     const dictionary& dict,
-    const triMesh& mesh
+    const triMesh& mesh,
+    const rigidBodies* bodies
 )
 :
     presetParticleRegion(name)

@@ -35,7 +35,8 @@ Foam::scalar Foam::presetParticleRegion::readPositive
 Foam::PtrList<Foam::presetParticleRegion> Foam::readPresetParticleRegions
 (
     const dictionary& conversionDict,
-    const triMesh& mesh
+    const triMesh& mesh,
+    const rigidBodies* bodies
 )
 {
     PtrList<presetParticleRegion> regions;
@@ -66,7 +67,10 @@ Foam::PtrList<Foam::presetParticleRegion> Foam::readPresetParticleRegions
                 << " must be a sub-dictionary: "
                 << e.keyword() << " { type box; ... }" << exit(FatalIOError);
         }
-        regions.append(presetParticleRegion::New(e.keyword(), e.dict(), mesh));
+        regions.append
+        (
+            presetParticleRegion::New(e.keyword(), e.dict(), mesh, bodies)
+        );
     }
 
     return regions;

@@ -4,7 +4,8 @@ Foam::autoPtr<Foam::presetParticleRegion> Foam::presetParticleRegion::New
 (
     const word& name,
     const dictionary& dict,
-    const triMesh& mesh
+    const triMesh& mesh,
+    const rigidBodies* bodies
 )
 {
     const word regionType(dict.get<word>("type"));
@@ -30,5 +31,5 @@ Foam::autoPtr<Foam::presetParticleRegion> Foam::presetParticleRegion::New
         ) << exit(FatalIOError);
     }
 
-    return cstrIter()(name, dict, mesh);
+    return cstrIter()(name, dict, mesh, bodies);
 }
