@@ -1553,6 +1553,47 @@ TEST_F(Solver, sphRestartContinuesFromWrittenParticleState)
 }
 
 
+TEST_F(Solver, stepsLandOnWriteTimesWithoutExceedingMaxCo)
+{
+    // A write interval of 2.3 steps at maxCo (the stable step of this
+    // column is 2.95e-3 s): OpenFOAM's own adjustment rounds the steps to
+    // the next write time to the nearest count, 2, and stretches each step
+    // to Courant number 0.58; rounded up, 3 steps of Courant number 0.38
+    setControl("adjustTimeStep", "yes");
+    setControl("maxCo", "0.5");
+    setControl("writeControl", "adjustableRunTime");
+    setControl("writeInterval", "0.0034");
+    setControl("endTime", "0.017");
+    setControl("logInterval", "1");
+    const std::string text = runExpectingSuccess();
+
+    double largest = 0;
+    int logged = 0;
+    const std::regex courant("Courant number = ([-+0-9.eE]+)");
+    for
+    (
+        std::sregex_iterator it(text.begin(), text.end(), courant), end;
+        it != end;
+        ++it
+    )
+    {
+        largest = std::max(largest, std::stod((*it)[1]));
+        ++logged;
+    }
+    ASSERT_GT(logged, 5) << text;
+    std::cout << logged << " steps, largest Courant number " << largest
+        << " (maxCo 0.5)" << std::endl;
+    EXPECT_LE(largest, 0.5*(1 + 1e-9));
+
+    // And the series holds every write time
+    const std::vector<double> times = pvdTimes(pvd());
+    for (int k = 1; k <= 5; ++k)
+    {
+        EXPECT_TRUE(holdsTime(times, 0.0034*k)) << 0.0034*k << '\n' << readText(pvd());
+    }
+}
+
+
 TEST_F(Solver, sphWithOnlySolidRegionsRunsTheElements)
 {
     // Solids are elements with every method; method SPH makes the fluid
