@@ -45,6 +45,7 @@ Description
 #include "testMeshes.H"
 
 #include "testFiles.H"
+#include "IFstream.H"
 
 #include <gtest/gtest.h>
 
@@ -1550,6 +1551,79 @@ TEST_F(Solver, sphRestartContinuesFromWrittenParticleState)
     EXPECT_LE(rhoError, 1e-12);
     // The particles move: not a comparison of two resting states
     EXPECT_GT(maxU, 1e-2);
+}
+
+
+TEST_F(Solver, sphRestartWithAFreeBodyContinuesExactly)
+{
+    // A light cylinder rising freely in the column (method SPH): its dummy
+    // particles' accelerations enter the wall pressure, so the restart
+    // needs them and the body's state. A: continuously to 2T; B: to T,
+    // then on to 2T from its latest time
+    useSPH();
+    const std::string T = "0.06", twoT = "0.12";
+    setControl("writeInterval", "50");
+    const double r = 0.06, mass = 0.6*waterDensity*M_PI*r*r;
+    std::ostringstream bodies;
+    bodies.precision(17);
+    bodies
+        << "bodies\n{\n    float\n    {\n        shape circle;\n"
+        << "        centre (0.27 0.6 0);\n        radius " << r << ";\n"
+        << "        motion free;\n        mass " << mass << ";\n    }\n}\n";
+    rigidBodies_ = bodies.str();
+
+    fs::path caseA, caseB;
+    runContinuousAndRestarted
+    (
+        T, twoT,
+        [&](const fs::path& B)
+        {
+            return std::vector<std::string>
+            {
+                "Restart: read the rigid bodies' state from",
+                (B/T/"spem").string()
+            };
+        },
+        caseA, caseB
+    );
+    if (HasFailure()) return;
+
+    double xError = 1, UError = 1, bodyError = 1, bodyMove = 0;
+    try
+    {
+        xError = relativeDifference
+        (
+            readState(twoT, "particlePositions", caseA),
+            readState(twoT, "particlePositions", caseB)
+        );
+        UError = relativeDifference
+        (
+            readState(twoT, "particleU", caseA),
+            readState(twoT, "particleU", caseB)
+        );
+        const auto bodyPosition = [&](const fs::path& dir)
+        {
+            Foam::IFstream is((dir/twoT/"spem"/"rigidBodies").string());
+            const Foam::dictionary state(is);
+            return state.subDict("float").get<Foam::vector>("position");
+        };
+        const Foam::vector pA = bodyPosition(caseA);
+        const Foam::vector pB = bodyPosition(caseB);
+        bodyError = Foam::mag(pA - pB)/Foam::mag(pA);
+        bodyMove = Foam::mag(pA - Foam::vector(0.27, 0.6, 0));
+    }
+    catch (const Foam::error& err)
+    {
+        FAIL() << "cannot read the final states: " << err.message();
+    }
+    std::cout << "SPH restart with a free body: relative difference of the"
+        << " final states: positions " << xError << ", U " << UError
+        << ", body position " << bodyError << "; the body moved "
+        << bodyMove << " m" << std::endl;
+    EXPECT_LE(xError, 1e-12);
+    EXPECT_LE(UError, 1e-12);
+    EXPECT_LE(bodyError, 1e-12);
+    EXPECT_GT(bodyMove, 1e-4);
 }
 
 

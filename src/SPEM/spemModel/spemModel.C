@@ -189,6 +189,33 @@ void Foam::spemModel::writeState() const
 {
     mkDir(runTime_.timePath()/"spem");
     if (particles_) writeParticleState();
+    // The moving walls' accelerations, for an exact restart
+    const auto writeAcceleration =
+        [this](const word& name, const wallAcceleration& wa)
+        {
+            IOobject uIO
+            (
+                name + "OldU", runTime_.timeName(), "spem", runTime_,
+                IOobject::NO_READ, IOobject::NO_WRITE, false
+            );
+            vectorIOField U(uIO, wa.size());
+            vectorIOField A(IOobject(uIO, name + "Acceleration"), wa.size());
+            forAll(U, k)
+            {
+                U[k] = vector(wa.oldVelocities()[2*k], wa.oldVelocities()[2*k + 1], 0);
+                A[k] = vector(wa.accelerations()[2*k], wa.accelerations()[2*k + 1], 0);
+            }
+            U.write();
+            A.write();
+        };
+    if (structureCoupling_)
+    {
+        writeAcceleration("virtualParticle", structureCoupling_->acceleration());
+    }
+    if (bodyCoupling_)
+    {
+        writeAcceleration("bodyParticle", bodyCoupling_->acceleration());
+    }
     if (!bodies_.empty())
     {
         IOdictionary state
@@ -674,6 +701,46 @@ void Foam::spemModel::createParticleHalf
                 << structureCoupling_->size()
                 << " virtual particles in the solid regions" << nl;
         }
+    }
+
+    // Restart: the moving walls' accelerations of the written step
+    const auto readAcceleration =
+        [this](const word& name, wallAcceleration& wa)
+        {
+            IOobject uIO
+            (
+                name + "OldU", runTime_.timeName(), "spem", runTime_,
+                IOobject::MUST_READ, IOobject::NO_WRITE, false
+            );
+            if (!uIO.typeHeaderOk<vectorIOField>(true)) return;
+            const vectorIOField U(uIO);
+            const vectorIOField A(IOobject(uIO, name + "Acceleration"));
+            if (U.size() != wa.size() || A.size() != wa.size())
+            {
+                FatalErrorInFunction
+                    << "The restart state " << uIO.objectPath() << " has "
+                    << U.size() << " moving wall particles; the case has "
+                    << wa.size() << ". Is the state from another mesh or"
+                    << " body set-up? (Allclean removes it.)"
+                    << exit(FatalError);
+            }
+            std::vector<scalar> u(2*U.size()), a(2*A.size());
+            forAll(U, k)
+            {
+                u[2*k] = U[k].x();
+                u[2*k + 1] = U[k].y();
+                a[2*k] = A[k].x();
+                a[2*k + 1] = A[k].y();
+            }
+            wa.restart(u, a);
+        };
+    if (structureCoupling_)
+    {
+        readAcceleration("virtualParticle", structureCoupling_->acceleration());
+    }
+    if (bodyCoupling_)
+    {
+        readAcceleration("bodyParticle", bodyCoupling_->acceleration());
     }
 
     if (!rhoOld.empty())

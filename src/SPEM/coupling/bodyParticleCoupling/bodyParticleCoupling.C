@@ -13,7 +13,6 @@ Foam::bodyParticleCoupling::bodyParticleCoupling
 :
     mass_(rho0*spacing*spacing),
     smoothingLength_(smoothingLength),
-    haveOldVelocity_(false),
     force_(2*bodies.size(), 0),
     moment_(bodies.size(), 0)
 {
@@ -27,7 +26,7 @@ Foam::bodyParticleCoupling::bodyParticleCoupling
             reference_.push_back(wall.positions[2*k + 1]);
         }
     }
-    vOld_.assign(2*size(), 0);
+    acceleration_.resize(size());
 }
 
 
@@ -44,7 +43,6 @@ void Foam::bodyParticleCoupling::appendParticles
     std::vector<scalar>& h
 )
 {
-    const bool accelerate = haveOldVelocity_ && dt > 0;
     for (label k = 0; k < size(); ++k)
     {
         const rigidBody& body = bodies[body_[k]];
@@ -57,14 +55,14 @@ void Foam::bodyParticleCoupling::appendParticles
         v.push_back(vk.y());
         // The body's velocity is that of the last half step: the
         // acceleration of this material point over the last step
-        a.push_back(accelerate ? (vk.x() - vOld_[2*k])/dt : 0);
-        a.push_back(accelerate ? (vk.y() - vOld_[2*k + 1])/dt : 0);
-        vOld_[2*k] = vk.x();
-        vOld_[2*k + 1] = vk.y();
+        scalar ax, ay;
+        acceleration_.update(k, vk.x(), vk.y(), dt, ax, ay);
+        a.push_back(ax);
+        a.push_back(ay);
         m.push_back(mass_);
         h.push_back(smoothingLength_);
     }
-    haveOldVelocity_ = true;
+    acceleration_.endUpdate();
 }
 
 

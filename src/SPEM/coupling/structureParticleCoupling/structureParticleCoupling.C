@@ -60,7 +60,6 @@ Foam::structureParticleCoupling::structureParticleCoupling
 )
 :
     smoothingLength_(smoothingLength),
-    haveOldVelocity_(false),
     force_{0, 0}
 {
     const std::vector<scalar>& X = mesh.points();
@@ -242,7 +241,7 @@ Foam::structureParticleCoupling::structureParticleCoupling
         }
     }
 
-    vOld_.assign(2*size(), 0);
+    acceleration_.resize(size());
 }
 
 
@@ -262,8 +261,6 @@ void Foam::structureParticleCoupling::appendParticles
     const label n = size();
     const std::vector<scalar>& x = elements.positions();
     const std::vector<scalar>& v = elements.velocities();
-    const bool accelerate = haveOldVelocity_ && dt > 0;
-
     for (label k = 0; k < n; ++k)
     {
         const label* nodes = &nodes_[3*k];
@@ -282,14 +279,14 @@ void Foam::structureParticleCoupling::appendParticles
         vOut.push_back(vy);
         // The nodes' velocities are those of the last half step: the
         // acceleration over the last step from their difference
-        aOut.push_back(accelerate ? (vx - vOld_[2*k])/dt : 0);
-        aOut.push_back(accelerate ? (vy - vOld_[2*k + 1])/dt : 0);
-        vOld_[2*k] = vx;
-        vOld_[2*k + 1] = vy;
+        scalar ax, ay;
+        acceleration_.update(k, vx, vy, dt, ax, ay);
+        aOut.push_back(ax);
+        aOut.push_back(ay);
         mOut.push_back(m_[k]);
         hOut.push_back(smoothingLength_);
     }
-    haveOldVelocity_ = true;
+    acceleration_.endUpdate();
 }
 
 
