@@ -19,7 +19,7 @@ Description
         (2010) printed;
       - hydrostaticTank with a cylinder held at rest under water (a rigid
         body, method SPH and SPEM): the fluid's force on it within 2 % of
-        Archimedes' buoyancy rho g pi r^2 after 1 s.
+        Archimedes' buoyancy rho g pi r^2 after 1 s, and no particle in it.
 
 \*---------------------------------------------------------------------------*/
 
@@ -497,6 +497,23 @@ TEST(SpemValidation, submergedCylinderFeelsArchimedesBuoyancy)
         );
         EXPECT_LT(std::abs(Fy/buoyancy - 1), 0.02);
         EXPECT_LT(std::abs(Fx), 0.01*buoyancy);
+
+        // No water particle inside the cylinder at any written time
+        for (const fs::path& vtm : seriesFiles(caseDir))
+        {
+            const blockData particles =
+                readBlock(vtm, "particles", "pressure", false);
+            double closest = 1;
+            for (size_t i = 0; i < particles.x.size(); ++i)
+            {
+                closest = std::min
+                (
+                    closest,
+                    std::hypot(particles.x[i] - 0.25, particles.y[i] - 0.2)
+                );
+            }
+            EXPECT_GT(closest, r) << vtm;
+        }
         if (!::testing::Test::HasFailure()) fs::remove_all(caseDir);
     }
 }
