@@ -73,3 +73,17 @@ def readFunctionObject(caseDir, name, nValues=None):
 
     times = sorted(rowsAtTime)
     return comments, times, [rowsAtTime[t] for t in times]
+
+
+def readReference(referenceDir, fileName, required=False):
+    """Return the first two columns of referenceDir/fileName as an (n, 2)
+    array ('#' comments skipped), or None if the file is missing and not
+    required (a note says so); a missing required file exits."""
+    path = os.path.join(referenceDir, fileName)
+    if not os.path.isfile(path):
+        if required:
+            sys.exit("plot.py: %s missing" % path)
+        print("note: %s not found, left out" % path)
+        return None
+    import numpy
+    return numpy.loadtxt(path, comments="#", ndmin=2)[:, :2]

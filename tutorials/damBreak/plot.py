@@ -34,7 +34,7 @@ sys.path.insert(0, os.path.join(
                    os.path.join(os.path.dirname(os.path.abspath(__file__)),
                                 "..", "..")),
     "bin", "tools"))
-from spemPostProcessing import readFunctionObject  # noqa: E402
+from spemPostProcessing import readFunctionObject, readReference  # noqa: E402
 
 np = None   # numpy, imported in main() once the results have been found
 
@@ -77,17 +77,6 @@ def readSurgeFront(caseDir):
     """Return lists (time, front, height) from all start-time folders."""
     comments, times, rows = readFunctionObject(caseDir, "surgeFront", 2)
     return times, [r[0] for r in rows], [r[1] for r in rows]
-
-
-def readReference(fileName, required):
-    """Return an (n, 2) array from referenceData/fileName, or None."""
-    path = os.path.join(referenceDir, fileName)
-    if not os.path.isfile(path):
-        if required:
-            sys.exit("plot.py: %s missing" % path)
-        print("note: %s not found, left out" % path)
-        return None
-    return np.loadtxt(path, comments="#", ndmin=2)[:, :2]
 
 
 def compareSurgeFront(name, data, T, Z, Zwall):
@@ -148,13 +137,13 @@ def main():
 
     surgeFrontRefs = []
     for i, (name, fileName, marker) in enumerate(surgeFrontData):
-        data = readReference(fileName, required=(i == 0))
+        data = readReference(referenceDir, fileName, required=(i == 0))
         if data is not None:
             surgeFrontRefs.append((name, data, marker))
     columnHeightRefs = []
     for name, fileName, marker in columnHeightData:
         columnHeightRefs.append(
-            (name, readReference(fileName, required=True), marker))
+            (name, readReference(referenceDir, fileName, required=True), marker))
 
     worstAll = None
     for name, data, marker in surgeFrontRefs:

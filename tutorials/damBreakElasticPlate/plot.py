@@ -29,7 +29,7 @@ sys.path.insert(0, os.path.join(
                    os.path.join(os.path.dirname(os.path.abspath(__file__)),
                                 "..", "..")),
     "bin", "tools"))
-from spemPostProcessing import readFunctionObject  # noqa: E402
+from spemPostProcessing import readFunctionObject, readReference  # noqa: E402
 
 np = None   # numpy, imported in main() once the results have been found
 
@@ -50,15 +50,6 @@ def parseArguments():
     parser.add_argument("--case", default=scriptDir,
                         help="case folder (default: this script's folder)")
     return parser.parse_args()
-
-
-def readReference(fileName):
-    """Return an (n, 2) array (t, Dx) from referenceData/fileName, or None."""
-    path = os.path.join(referenceDir, fileName)
-    if not os.path.isfile(path):
-        print("note: %s not found, left out" % path)
-        return None
-    return np.loadtxt(path, comments="#", ndmin=2)[:, :2]
 
 
 def compare(name, data, times, dx):
@@ -109,7 +100,7 @@ def main():
 
     references = []
     for name, fileName, style in referenceData:
-        data = readReference(fileName)
+        data = readReference(referenceDir, fileName)
         if data is not None:
             references.append((name, data, style))
             compare(name, data, times, dx)
