@@ -471,6 +471,53 @@ TEST(RigidBodySurfacePoints, spacedNoMoreThanSpacingOnTheMovedSurface)
 }
 
 
+TEST(RigidBodySurfacePoints, outlineTriangulationCoversTheShapeExactly)
+{
+    // The ParaView outline: surface points triangulated by ear clipping.
+    // Every triangle counter-clockwise, none overlapping (their areas add
+    // up to the shape's: overlaps or gaps would change the sum), each
+    // triangle's centroid inside the shape. The L has a reflex vertex and
+    // points on straight runs, the square is given clockwise.
+    for (const std::string& shape :
+        {std::string(wedge), std::string(lShape),
+         std::string(unitSquareClockwise),
+         std::string("shape circle; centre (0 -1.25 0); radius 1;")})
+    {
+        SCOPED_TRACE(shape);
+        auto body = fixedBody(shape);
+        const std::vector<scalar> loop = body->surfacePoints(0.1);
+        const std::vector<label> tri = rigidBodyShape::triangulate(loop);
+        ASSERT_EQ(tri.size() % 3, 0u);
+        ASSERT_GE(tri.size(), 3u);
+        scalar area = 0;
+        for (size_t t = 0; t < tri.size()/3; ++t)
+        {
+            const scalar* a = &loop[2*tri[3*t]];
+            const scalar* b = &loop[2*tri[3*t + 1]];
+            const scalar* c = &loop[2*tri[3*t + 2]];
+            const scalar A =
+                0.5*((b[0] - a[0])*(c[1] - a[1]) - (b[1] - a[1])*(c[0] - a[0]));
+            EXPECT_GT(A, 1e-12) << "triangle " << t;
+            area += A;
+            EXPECT_TRUE
+            (
+                body->contains((a[0] + b[0] + c[0])/3, (a[1] + b[1] + c[1])/3)
+            ) << "triangle " << t;
+        }
+        // The circle's outline is the inscribed polygon of its points
+        const label n = label(loop.size()/2);
+        scalar polygonArea = 0;
+        for (label i = 0; i < n; ++i)
+        {
+            const label j = (i + 1) % n;
+            polygonArea += 0.5*(loop[2*i]*loop[2*j + 1] - loop[2*j]*loop[2*i + 1]);
+        }
+        EXPECT_NEAR(area, std::abs(polygonArea), 1e-12);
+        EXPECT_NEAR(area, body->shape().area(), 0.01*body->shape().area());
+    }
+}
+
+
 // * * * * * * * * * * * * * * * * * Motion  * * * * * * * * * * * * * * * * //
 
 TEST(RigidBodyFreeMotion, freeFallIsExactWithAHalfKickAtTheFirstStep)

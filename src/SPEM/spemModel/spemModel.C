@@ -4,6 +4,7 @@
 #include "vectorIOField.H"
 #include "uniformDimensionedFields.H"
 #include "OSspecific.H"
+#include "mathematicalConstants.H"
 #include "vtkSeriesWriter.H"
 #include "checkKeywords.H"
 #include "elementToParticle.H"
@@ -382,6 +383,59 @@ void Foam::spemModel::writeVTK()
             {"smoothingLength", 1, wall.h.data()}
         };
         particleBlocks.push_back(std::move(wb));
+    }
+
+    // Rigid bodies: their outlines, moved, with the rigid velocity
+    std::vector<scalar> bodyX, bodyV, bodyIndex;
+    std::vector<label> bodyTri;
+    if (!bodies_.empty())
+    {
+        if (bodyOutline_.empty())
+        {
+            forAll(bodies_, b)
+            {
+                // 96 points round a circle (its perimeter over 96); a
+                // polygon's straight runs add points no triangle uses
+                const scalar A = bodies_[b].shape().area();
+                const scalar spacing =
+                    std::sqrt(constant::mathematical::pi*A)/48;
+                const rigidBodyShape& shape = bodies_[b].shape();
+                bodyOutline_.push_back(shape.surfacePoints(spacing));
+                bodyOutlineTriangles_.push_back
+                (
+                    rigidBodyShape::triangulate(bodyOutline_.back())
+                );
+            }
+        }
+        forAll(bodies_, b)
+        {
+            const rigidBody& body = bodies_[b];
+            const label offset = label(bodyX.size()/2);
+            const std::vector<scalar>& X = bodyOutline_[b];
+            for (size_t i = 0; i < X.size()/2; ++i)
+            {
+                const vector2D x = body.toCurrent(vector2D(X[2*i], X[2*i + 1]));
+                const vector2D v = body.velocityAt(x.x(), x.y());
+                bodyX.push_back(x.x());
+                bodyX.push_back(x.y());
+                bodyV.push_back(v.x());
+                bodyV.push_back(v.y());
+            }
+            for (const label n : bodyOutlineTriangles_[b])
+            {
+                bodyTri.push_back(offset + n);
+            }
+            bodyIndex.resize(bodyTri.size()/3, b);
+        }
+        vtkOutput::triangleBlock bb;
+        bb.name = "rigidBodies";
+        bb.nPoints = bodyX.size()/2;
+        bb.points = bodyX.data();
+        bb.nTriangles = bodyTri.size()/3;
+        bb.triangles = bodyTri.data();
+        bb.pointData = {{"velocity", 2, bodyV.data()}};
+        bb.cellData = {{"body", 1, bodyIndex.data()}};
+        triangleBlocks.push_back(std::move(bb));
     }
 
     try

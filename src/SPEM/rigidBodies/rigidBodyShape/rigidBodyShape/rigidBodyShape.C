@@ -122,3 +122,101 @@ Foam::bodyWallParticles Foam::rigidBodyShape::keepApart
 
     return kept;
 }
+
+
+std::vector<Foam::label> Foam::rigidBodyShape::triangulate
+(
+    const std::vector<scalar>& loop
+)
+{
+    const label n = label(loop.size()/2);
+    auto X = [&loop](const label i) { return loop[2*i]; };
+    auto Y = [&loop](const label i) { return loop[2*i + 1]; };
+
+    // Orientation (shoelace) and a round-off scale for areas
+    scalar twiceArea = 0, xMin = GREAT, xMax = -GREAT, yMin = GREAT,
+        yMax = -GREAT;
+    for (label i = 0; i < n; ++i)
+    {
+        const label j = (i + 1) % n;
+        twiceArea += X(i)*Y(j) - X(j)*Y(i);
+        xMin = std::min(xMin, X(i));
+        xMax = std::max(xMax, X(i));
+        yMin = std::min(yMin, Y(i));
+        yMax = std::max(yMax, Y(i));
+    }
+    const scalar sign = twiceArea < 0 ? -1 : 1;
+    const scalar tol =
+        1e-12*(sqr(xMax - xMin) + sqr(yMax - yMin));
+
+    // Twice the signed area of (a, b, c), positive if counter-clockwise
+    // along the loop's own orientation
+    auto turn = [&](const label a, const label b, const label c)
+    {
+        return sign
+           *(
+                (X(b) - X(a))*(Y(c) - Y(a)) - (Y(b) - Y(a))*(X(c) - X(a))
+            );
+    };
+
+    std::vector<label> remaining(n);
+    for (label i = 0; i < n; ++i) remaining[i] = i;
+
+    std::vector<label> triangles;
+    triangles.reserve(3*std::max(label(0), n - 2));
+    auto emit = [&](const label a, const label b, const label c)
+    {
+        triangles.push_back(a);
+        // Counter-clockwise in the plane whatever the loop's orientation
+        triangles.push_back(sign > 0 ? b : c);
+        triangles.push_back(sign > 0 ? c : b);
+    };
+
+    while (remaining.size() > 3)
+    {
+        const label m = label(remaining.size());
+        bool clipped = false;
+        for (label k = 0; k < m && !clipped; ++k)
+        {
+            const label a = remaining[(k + m - 1) % m];
+            const label b = remaining[k];
+            const label c = remaining[(k + 1) % m];
+            const scalar t = turn(a, b, c);
+            if (std::abs(t) <= tol)
+            {
+                // b on a straight run (or a spike): drop it, no triangle
+                remaining.erase(remaining.begin() + k);
+                clipped = true;
+                break;
+            }
+            if (t < 0) continue;    // reflex vertex
+
+            // An ear if no other vertex lies in or on the triangle
+            bool ear = true;
+            for (label q = 0; q < m && ear; ++q)
+            {
+                const label p = remaining[q];
+                if (p == a || p == b || p == c) continue;
+                ear =
+                    turn(a, b, p) < -tol || turn(b, c, p) < -tol
+                 || turn(c, a, p) < -tol;
+            }
+            if (!ear) continue;
+            emit(a, b, c);
+            remaining.erase(remaining.begin() + k);
+            clipped = true;
+        }
+        if (!clipped)
+        {
+            FatalErrorInFunction
+                << "The polygon of " << n << " points is not simple: no ear"
+                << " left with " << m << " points" << exit(FatalError);
+        }
+    }
+    if (remaining.size() == 3)
+    {
+        const label a = remaining[0], b = remaining[1], c = remaining[2];
+        if (std::abs(turn(a, b, c)) > tol) emit(a, b, c);
+    }
+    return triangles;
+}
