@@ -1,14 +1,29 @@
 #include "rigidBody.H"
 #include "checkKeywords.H"
 
+const Foam::Enum<Foam::rigidBody::elementContact>
+Foam::rigidBody::elementContactNames
+({
+    {elementContact::slide, "slide"},
+    {elementContact::convert, "convert"}
+});
+
+
 Foam::rigidBody::rigidBody(const word& name, const dictionary& dict)
 :
     name_(name),
     shape_(rigidBodyShape::New(dict)),
-    motion_(rigidBodyMotion::New(dict, *shape_))
+    motion_(rigidBodyMotion::New(dict, *shape_)),
+    elementContact_
+    (
+        elementContactNames.getOrDefault
+        (
+            "fluidElements", dict, elementContact::slide
+        )
+    )
 {
     // One flat dictionary holds the keywords of both models
-    wordList allowed({"shape", "motion"});
+    wordList allowed({"shape", "motion", "fluidElements"});
     allowed.append(shape_->keywords());
     allowed.append(motion_->keywords());
     checkKeywords(dict, allowed);

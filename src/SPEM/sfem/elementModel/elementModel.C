@@ -422,6 +422,7 @@ Foam::elementModel::elementModel
     cur_(0),
     nodeConstraint_(nNodes_, constraint::free),
     nodeNormal_(2*nNodes_, 0),
+    nodeNormalSpeed_(nNodes_, 0),
     nodeReaction_(2*nNodes_, 0),
     gravity_{0, 0},
     massDamping_(0),
@@ -463,6 +464,29 @@ void Foam::elementModel::setConstraints
     }
     nodeConstraint_ = std::move(c);
     nodeNormal_ = std::move(normals);
+    nodeNormalSpeed_.assign(nNodes_, 0);
+}
+
+
+void Foam::elementModel::setMovingSlip
+(
+    const label n,
+    const scalar nx,
+    const scalar ny,
+    const scalar normalSpeed
+)
+{
+    nodeConstraint_[n] = constraint::slip;
+    nodeNormal_[2*n] = nx;
+    nodeNormal_[2*n + 1] = ny;
+    nodeNormalSpeed_[n] = normalSpeed;
+}
+
+
+void Foam::elementModel::setPosition(const label n, const scalar x, const scalar y)
+{
+    x_[cur_][2*n] = x;
+    x_[cur_][2*n + 1] = y;
 }
 
 
@@ -555,7 +579,8 @@ bool Foam::elementModel::advance(const scalar dt)
             if (nodeConstraint_[n] == constraint::slip)
             {
                 const scalar* nn = &nodeNormal_[2*n];
-                const scalar vnn = vn[0]*nn[0] + vn[1]*nn[1];
+                const scalar vnn =
+                    vn[0]*nn[0] + vn[1]*nn[1] - nodeNormalSpeed_[n];
                 vn[0] -= vnn*nn[0];
                 vn[1] -= vnn*nn[1];
             }
