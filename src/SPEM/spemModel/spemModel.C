@@ -236,6 +236,25 @@ void Foam::spemModel::writeState() const
     }
     if (!elements_) return;
 
+    if (bodyElements_)
+    {
+        labelIOList pairs
+        (
+            IOobject
+            (
+                "bodyNodes", runTime_.timeName(), "spem", runTime_,
+                IOobject::NO_READ, IOobject::NO_WRITE, false
+            ),
+            2*bodyElements_->size()
+        );
+        for (label k = 0; k < bodyElements_->size(); ++k)
+        {
+            pairs[2*k] = bodyElements_->nodes()[k];
+            pairs[2*k + 1] = bodyElements_->bodies()[k];
+        }
+        pairs.write();
+    }
+
     if (!convertedTriangles_.empty())
     {
         labelIOList converted
@@ -965,6 +984,7 @@ void Foam::spemModel::convert(const std::vector<label>& triangles)
     }
     particles_->appendFluid(ps);
     coupling_->update(mesh_, *elements_, patchTypes_);
+    if (bodyElements_) bodyElements_->update(*elements_);
 
     Info<< "Conversion at time " << runTime_.timeName() << ": "
         << triangles.size() << " fluid elements became particles; "
@@ -1009,38 +1029,209 @@ std::vector<Foam::label> Foam::spemModel::trianglesInsideBodies() const
 }
 
 
+Foam::bodyElementCoupling::preparedMesh Foam::spemModel::fitElementsToBodies
+(
+    const PtrList<spemMaterial>& materials
+)
+{
+    const label nTri = mesh_.nTriangles();
+    const std::vector<label>& tri = mesh_.triangles();
+    std::vector<bool> fluid(nTri, false), fixedNode(mesh_.nPoints(), false);
+    scalar areaSum = 0;
+    label nFluid = 0;
+    for (label t = 0; t < nTri; ++t)
+    {
+        const label r = mesh_.triangleRegion()[t];
+        if (!materials.set(r)) continue;    // void: nothing to hold
+        fluid[t] = materials[r].isFluid();
+        if (fluid[t])
+        {
+            areaSum += mesh_.triangleArea(t);
+            ++nFluid;
+        }
+        else
+        {
+            // A solid's nodes stay where the mesh has them
+            for (label a = 0; a < 3; ++a) fixedNode[tri[3*t + a]] = true;
+        }
+    }
+    bool anySlide = false;
+    forAll(bodies_, b)
+    {
+        anySlide = anySlide
+         || bodies_[b].elementsContact() == rigidBody::elementContact::slide;
+    }
+    if (nFluid == 0 || !anySlide)
+    {
+        // Only the water inside the bodies goes
+        bodyElementCoupling::preparedMesh inside;
+        inside.removed = trianglesInsideBodies();
+        return inside;
+    }
+
+    // Preset particle regions become particles at t = 0 as the mesh gives
+    // them: not fitted, their nodes stay (the water inside a body is taken
+    // out below)
+    std::vector<bool> preset(nTri, false);
+    {
+        const PtrList<presetParticleRegion> regions =
+            readPresetParticleRegions
+            (
+                schemes_.subOrEmptyDict("conversion"), mesh_, &bodies_
+            );
+        const std::vector<scalar>& X = mesh_.points();
+        for (label t = 0; t < nTri && !regions.empty(); ++t)
+        {
+            if (!fluid[t]) continue;
+            const label* n = &tri[3*t];
+            const scalar cx = (X[2*n[0]] + X[2*n[1]] + X[2*n[2]])/3;
+            const scalar cy =
+                (X[2*n[0] + 1] + X[2*n[1] + 1] + X[2*n[2] + 1])/3;
+            for (const presetParticleRegion& r : regions)
+            {
+                if (r.contains(cx, cy))
+                {
+                    preset[t] = true;
+                    fluid[t] = false;
+                    for (label a = 0; a < 3; ++a) fixedNode[n[a]] = true;
+                    break;
+                }
+            }
+        }
+    }
+
+    // So do the nodes of walls and clamps; free-surface nodes may slide
+    const std::vector<label>& seg = mesh_.segments();
+    for (label s = 0; s < mesh_.nSegments(); ++s)
+    {
+        if (patchTypes_[mesh_.segmentPatch()[s]] != patchType::freeSurface)
+        {
+            fixedNode[seg[2*s]] = fixedNode[seg[2*s + 1]] = true;
+        }
+    }
+
+    bodyContact_ = 0.25*std::sqrt(areaSum/nFluid);
+    bodyElementCoupling::preparedMesh fitted =
+        bodyElementCoupling::prepareMesh
+        (
+            mesh_, bodies_, fluid, fixedNode, bodyContact_
+        );
+    for (const label t : trianglesInsideBodies())
+    {
+        if (preset[t]) fitted.removed.push_back(t);
+    }
+    if (!fitted.nodes.empty())
+    {
+        Info<< "    rigid bodies: " << fitted.nodes.size() << " element nodes"
+            << " moved onto their surfaces (at most " << fitted.maxMove
+            << " m)" << nl;
+    }
+    return fitted;
+}
+
+
+void Foam::spemModel::bodyLoad(const label b, scalar F[2], scalar& M) const
+{
+    F[0] = F[1] = M = 0;
+    if (bodyCoupling_)
+    {
+        F[0] += bodyCoupling_->force(b)[0];
+        F[1] += bodyCoupling_->force(b)[1];
+        M += bodyCoupling_->moment(b);
+    }
+    if (bodyElements_)
+    {
+        F[0] += bodyElements_->force(b)[0];
+        F[1] += bodyElements_->force(b)[1];
+        M += bodyElements_->moment(b);
+    }
+}
+
+
 std::vector<Foam::label> Foam::spemModel::trianglesNearBodies() const
 {
     std::vector<label> near;
     if (bodies_.empty() || !elements_ || !elementFluid_) return near;
 
-    // Within the support of a particle next to the body: converted before
-    // the element can touch it
-    const scalar reach = bodyReach_;
+    // fluidElements convert: elements with a node within the support of a
+    // particle next to the body, converted before they can touch it.
+    // slide: elements not on the body with a node within that support of
+    // the body and of a particle next to it (a spacing from it)
     const elementModel& em = *elements_;
     const std::vector<scalar>& x = em.positions();
     const std::vector<label>& nodes = em.elementNodes();
+    const scalar reach = bodyReach_;
+    std::vector<scalar>& nextToBody = nextToBody_;
     forAll(bodies_, b)
     {
-        const boundBox box = bodies_[b].boundingBox();
+        const rigidBody& body = bodies_[b];
+        const bool slide =
+            body.elementsContact() == rigidBody::elementContact::slide;
+        const boundBox box = body.boundingBox();
+        if (slide)
+        {
+            if (!particles_ || !bodyElements_) continue;
+            nextToBody.clear();
+            const particleSet& ps = particles_->particles();
+            const scalar* p = ps.positions().data();
+            const scalar d = fluidSpacing_;
+            for (label i = 0; i < ps.size(); ++i)
+            {
+                if (ps.kinds()[i] != particleSet::kind::fluid) continue;
+                const scalar px = p[2*i], py = p[2*i + 1];
+                if
+                (
+                    px < box.min().x() - d || px > box.max().x() + d
+                 || py < box.min().y() - d || py > box.max().y() + d
+                 || body.signedDistance(px, py) >= d
+                )
+                {
+                    continue;
+                }
+                nextToBody.push_back(px);
+                nextToBody.push_back(py);
+            }
+            if (nextToBody.empty()) continue;
+        }
         for (label r = 0; r < em.regions().size(); ++r)
         {
             if (!em.hasMaterial(r) || !em.material(r).isFluid()) continue;
             for (label el = em.regions()[r].elemBegin; el < em.regions()[r].elemEnd; ++el)
             {
+                const label* en = &nodes[3*el];
+                if
+                (
+                    slide
+                 && (
+                        bodyElements_->attached(en[0])
+                     || bodyElements_->attached(en[1])
+                     || bodyElements_->attached(en[2])
+                    )
+                )
+                {
+                    continue;
+                }
                 for (label a = 0; a < 3; ++a)
                 {
-                    const scalar px = x[2*nodes[3*el + a]];
-                    const scalar py = x[2*nodes[3*el + a] + 1];
+                    const scalar px = x[2*en[a]];
+                    const scalar py = x[2*en[a] + 1];
                     if
                     (
                         px < box.min().x() - reach || px > box.max().x() + reach
                      || py < box.min().y() - reach || py > box.max().y() + reach
+                     || body.signedDistance(px, py) >= reach
                     )
                     {
                         continue;
                     }
-                    if (bodies_[b].signedDistance(px, py) < reach)
+                    bool convert = !slide;
+                    for (size_t k = 0; !convert && k < nextToBody.size()/2; ++k)
+                    {
+                        convert =
+                            sqr(px - nextToBody[2*k]) + sqr(py - nextToBody[2*k + 1])
+                          < sqr(reach);
+                    }
+                    if (convert)
                     {
                         near.push_back(em.elementTriangle()[el]);
                         break;
@@ -1107,6 +1298,10 @@ void Foam::spemModel::evaluateHalves(const bool correctInterface)
             conversion_->trianglesToConvert(*elements_, trianglesNearBodies());
         if (!tris.empty()) convert(tris);
     }
+    if (bodyElements_)
+    {
+        bodyElements_->attachNear(*elements_, bodies_, bodyContact_);
+    }
     const bool coupled = elements_ && particles_ && coupling_;
     if (coupled)
     {
@@ -1171,6 +1366,7 @@ Foam::spemModel::spemModel(const Time& runTime)
     elementFluid_(nullptr),
     fluidSpacing_(0),
     bodyReach_(0),
+    bodyContact_(0),
     lastDeltaT_(0),
     massDamping_(0),
     lastWrittenTime_(-GREAT)
@@ -1216,6 +1412,13 @@ Foam::spemModel::spemModel(const Time& runTime)
 
     readBoundaries();
     readGravity();
+    // Fluid elements fitted to the rigid bodies: before anything takes
+    // masses or geometry from the mesh
+    bodyElementCoupling::preparedMesh bodyMesh;
+    if (method_ == methodType::SPEM && !bodies_.empty())
+    {
+        bodyMesh = fitElementsToBodies(materials);
+    }
     // The state at t = 0 (a restart then overwrites what it stores)
     const std::vector<scalar> density =
         initialDensity
@@ -1241,14 +1444,55 @@ Foam::spemModel::spemModel(const Time& runTime)
         elements_->setMassDamping(alpha);
         readState();
         // The water a body displaces at t = 0 is not there
-        const std::vector<label> inside = trianglesInsideBodies();
+        const std::vector<label> inside =
+            method_ == methodType::SPEM
+          ? bodyMesh.removed
+          : trianglesInsideBodies();
         if (!inside.empty())
         {
             elements_->removeTriangles(mesh_, inside);
             Info<< "    rigid bodies: " << inside.size() << " fluid elements"
                 << " inside them removed" << nl;
         }
+        if (bodyContact_ > 0)
+        {
+            // Restart: the nodes attached then
+            IOobject aIO
+            (
+                "bodyNodes", runTime_.timeName(), "spem", runTime_,
+                IOobject::MUST_READ, IOobject::NO_WRITE, false
+            );
+            if (aIO.typeHeaderOk<labelIOList>(true))
+            {
+                const labelIOList pairs(aIO);
+                bodyMesh.nodes.clear();
+                bodyMesh.bodies.clear();
+                for (label i = 0; i + 1 < pairs.size(); i += 2)
+                {
+                    bodyMesh.nodes.push_back(pairs[i]);
+                    bodyMesh.bodies.push_back(pairs[i + 1]);
+                }
+                Info<< "Restart: read the element nodes on the rigid bodies"
+                    << " from " << aIO.objectPath() << nl;
+            }
+            bodyElements_.reset
+            (
+                new bodyElementCoupling
+                (
+                    mesh_.nPoints(), bodies_.size(),
+                    std::move(bodyMesh.nodes), std::move(bodyMesh.bodies)
+                )
+            );
+        }
         setupConversion();
+        if (bodyElements_)
+        {
+            // Without the nodes a restart's conversions left without
+            // elements
+            bodyElements_->update(*elements_);
+            Info<< "    rigid bodies: " << bodyElements_->size()
+                << " element nodes slide on them" << nl;
+        }
     }
     else
     {
@@ -1390,10 +1634,12 @@ void Foam::spemModel::evaluate()
 void Foam::spemModel::advance()
 {
     const scalar dt = runTime_.deltaTValue();
+    if (bodyElements_) bodyElements_->constrain(*elements_, bodies_);
     if (elements_ && !elements_->advance(dt))
     {
         stopWithLastGoodState(elements_->failure());
     }
+    if (bodyElements_) bodyElements_->gatherForces(*elements_, bodies_);
     if (particles_ && !particles_->advance(dt))
     {
         stopWithLastGoodState(particles_->failure());
@@ -1402,13 +1648,11 @@ void Foam::spemModel::advance()
     // t^n = t^{n+1} - dt (the Time is already at the new time)
     forAll(bodies_, b)
     {
-        const scalar* F = bodyCoupling_ ? bodyCoupling_->force(b) : nullptr;
-        bodies_[b].advance
-        (
-            runTime_.value() - dt, dt, F ? F[0] : 0, F ? F[1] : 0,
-            bodyCoupling_ ? bodyCoupling_->moment(b) : 0, g_[0], g_[1]
-        );
+        scalar F[2], M;
+        bodyLoad(b, F, M);
+        bodies_[b].advance(runTime_.value() - dt, dt, F[0], F[1], M, g_[0], g_[1]);
     }
+    if (bodyElements_) bodyElements_->project(*elements_, bodies_);
     lastDeltaT_ = dt;
 }
 
@@ -1444,6 +1688,10 @@ void Foam::spemModel::report(Ostream& os) const
         os  << ", ghost particles = " << particles_->nGhost()
             << ", interface segments = " << coupling_->nInterfaceSegments();
     }
+    if (bodyElements_)
+    {
+        os  << ", element nodes on bodies = " << bodyElements_->size();
+    }
     if (structureCoupling_)
     {
         const scalar* f = structureCoupling_->force();
@@ -1452,11 +1700,12 @@ void Foam::spemModel::report(Ostream& os) const
     forAll(bodies_, b)
     {
         const rigidBody& body = bodies_[b];
-        const scalar* f = bodyCoupling_ ? bodyCoupling_->force(b) : nullptr;
+        scalar f[2], m;
+        bodyLoad(b, f, m);
         os  << ", body " << body.name() << " at (" << body.position().x()
             << ' ' << body.position().y() << ") velocity ("
             << body.velocity().x() << ' ' << body.velocity().y()
-            << ") force (" << (f ? f[0] : 0) << ' ' << (f ? f[1] : 0) << ')';
+            << ") force (" << f[0] << ' ' << f[1] << ')';
     }
 }
 

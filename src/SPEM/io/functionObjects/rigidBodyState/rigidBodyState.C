@@ -70,15 +70,14 @@ bool Foam::functionObjects::rigidBodyState::write()
     if (!writeToFile()) return true;
     const spemModel& m = model();
     const rigidBody& rb = m.bodies()[b];
-    const bodyParticleCoupling* coupling = m.bodyCoupling();
-    const scalar* F = coupling ? coupling->force(b) : nullptr;
+    scalar F[2], M;
+    m.bodyLoad(b, F, M);
 
     OFstream& os = file();
     os  << time_.value() << tab << rb.position().x() << tab
         << rb.position().y() << tab << rb.angle() << tab
         << rb.velocity().x() << tab << rb.velocity().y() << tab
-        << rb.angularVelocity() << tab << (F ? F[0] : 0) << tab
-        << (F ? F[1] : 0) << tab << (coupling ? coupling->moment(b) : 0)
+        << rb.angularVelocity() << tab << F[0] << tab << F[1] << tab << M
         << endl;
     return true;
 }
