@@ -607,4 +607,104 @@ TEST(SpemValidation, submergedCylinderFeelsArchimedesBuoyancy)
 }
 
 
+TEST(SpemValidation, floatingBoxRestsAtItsArchimedesDraft)
+{
+    // Tank 0.5 m x 0.5 m of water at rest, 40 cells across; a square box
+    // of side b = 0.16 m and half the water's density, free to heave only,
+    // placed at its Archimedes draft b/2 (centre on the surface). The
+    // water's elements are fitted to it and slide on its sides (method
+    // SPEM, fluidElements slide): they must hold it where it is, with the
+    // force of its weight, and stay elements.
+    const double rho0 = 1000, g = 9.81, b = 0.16, H = 0.5;
+    const double mass = 0.5*rho0*b*b, weight = mass*g;
+    const fs::path caseDir = copyTutorial("hydrostaticTank", "spemFloatingBox");
+    replaceEntry(caseDir/"system/blockMeshDict", "nx", "40");
+    replaceEntry(caseDir/"system/controlDict", "endTime", "1");
+    replaceEntry(caseDir/"system/controlDict", "writeInterval", "0.25");
+    replaceEntry(caseDir/"system/spemSchemes", "method", "SPEM");
+    {
+        std::ofstream os(caseDir/"constant/rigidBodyProperties");
+        os.precision(17);
+        os  << "FoamFile { version 2.0; format ascii; class dictionary;"
+               " object rigidBodyProperties; }\n"
+               "bodies\n{\n    box\n    {\n        shape polygon;"
+               " points ((0.17 0.42 0) (0.33 0.42 0) (0.33 0.58 0)"
+               " (0.17 0.58 0));\n"
+               "        motion free; mass " << mass << ";"
+               " constraints (x rotation);\n    }\n}\n";
+    }
+    {
+        std::string text = testFiles::readText(caseDir/"system/controlDict");
+        const std::string functions = "functions\n{";
+        const size_t at = text.find(functions);
+        ASSERT_NE(at, std::string::npos);
+        text.insert
+        (
+            at + functions.size(),
+            "\n    box { type rigidBodyState; body box;"
+            " writeControl timeStep; writeInterval 10; }\n"
+        );
+        std::ofstream(caseDir/"system/controlDict") << text;
+    }
+    ASSERT_TRUE(runCase(caseDir));
+
+    const std::vector<std::vector<double>> rows =
+        readTable(caseDir/"postProcessing/box/0/box.dat");
+    ASSERT_FALSE(rows.empty());
+    EXPECT_NEAR(rows.back()[0], 1, 0.01);
+    double sum = 0, highest = 0;
+    int n = 0;
+    for (const auto& row : rows)
+    {
+        highest = std::max(highest, std::abs(row[2] - H));
+        if (row[0] < 0.8) continue;
+        sum += row[8];
+        ++n;
+    }
+    ASSERT_GT(n, 0);
+    const double Fy = sum/n;
+    std::printf
+    (
+        "floating box: largest heave %.3g m (a cell is %.3g m), water's"
+        " force %.3f N/m, weight %.3f N/m (%+.3f %%)\n",
+        highest, H/40, Fy, weight, 100*(Fy/weight - 1)
+    );
+    EXPECT_LT(highest, 0.1*H/40);
+    EXPECT_NEAR(Fy, weight, 0.005*weight);
+
+    // Elements only, none inside the box, some nodes on its sides
+    for (const fs::path& vtm : seriesFiles(caseDir))
+    {
+        EXPECT_TRUE(readBlock(vtm, "particles", "pressure", false).x.empty());
+        const blockData elements = readBlock(vtm, "elements", "pressure");
+        const blockData box = readBlock(vtm, "rigidBodies", "body");
+        ASSERT_FALSE(box.points.empty());
+        double y0 = 1, y1 = -1;
+        for (size_t i = 1; i < box.points.size(); i += 2)
+        {
+            y0 = std::min(y0, box.points[i]);
+            y1 = std::max(y1, box.points[i]);
+        }
+        std::set<long> used;
+        for (const std::vector<long>& cell : elements.cells)
+        {
+            used.insert(cell.begin(), cell.end());
+        }
+        int onSides = 0;
+        for (const long i : used)
+        {
+            const double x = elements.points[2*i], y = elements.points[2*i + 1];
+            const double inside = std::min
+            (
+                std::min(x - 0.17, 0.33 - x), std::min(y - y0, y1 - y)
+            );
+            EXPECT_LT(inside, 1e-9) << vtm << ": node " << i << " inside";
+            onSides += std::abs(inside) < 1e-9;
+        }
+        EXPECT_GE(onSides, 20) << vtm;
+    }
+    if (!::testing::Test::HasFailure()) fs::remove_all(caseDir);
+}
+
+
 // ************************************************************************* //
