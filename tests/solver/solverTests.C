@@ -218,6 +218,15 @@ Foam::triMesh columnMesh(const int nx, const int ny)
 }
 
 
+//- Largest |a - b| over all components, relative to the largest |a|
+//  (defined below)
+double relativeDifference
+(
+    const Foam::vectorField& a,
+    const Foam::vectorField& b
+);
+
+
 //- Fixture: the water-column case in a fresh temporary folder
 class Solver : public ::testing::Test
 {
@@ -543,6 +552,71 @@ protected:
     //- method SPH with a fixed time step of Courant number 0.42 (the
     //  particles' stable step at Courant number 1 is 0.25 h/c = 0.96 ms
     //  with h = 1.3 x the particle spacing sqrt(L H/144) = 0.0589 m)
+    //- The body `float` of the restart tests: a free cylinder of radius
+    //  0.06 m at (0.27, 0.6), density ratio times the water's
+    static std::string floatBody(const double densityRatio)
+    {
+        const double r = 0.06;
+        std::ostringstream bodies;
+        bodies.precision(17);
+        bodies
+            << "bodies\n{\n    float\n    {\n        shape circle;\n"
+            << "        centre (0.27 0.6 0);\n        radius " << r << ";\n"
+            << "        motion free;\n        mass "
+            << densityRatio*waterDensity*M_PI*r*r << ";\n    }\n}\n";
+        return bodies.str();
+    }
+
+    //- The continuous run A and the restarted run B with the body `float`
+    //  end in the same state at twoT: positions and velocities (state
+    //  files xName, UName) and the body's position, to 1e-12; the body
+    //  moved
+    void expectFloatRestartExact
+    (
+        const fs::path& caseA,
+        const fs::path& caseB,
+        const std::string& twoT,
+        const std::string& xName,
+        const std::string& UName,
+        const std::string& label
+    )
+    {
+        double xError = 1, UError = 1, bodyError = 1, bodyMove = 0;
+        try
+        {
+            xError = relativeDifference
+            (
+                readState(twoT, xName, caseA), readState(twoT, xName, caseB)
+            );
+            UError = relativeDifference
+            (
+                readState(twoT, UName, caseA), readState(twoT, UName, caseB)
+            );
+            const auto bodyPosition = [&](const fs::path& dir)
+            {
+                Foam::IFstream is((dir/twoT/"spem"/"rigidBodies").string());
+                const Foam::dictionary state(is);
+                return state.subDict("float").get<Foam::vector>("position");
+            };
+            const Foam::vector pA = bodyPosition(caseA);
+            const Foam::vector pB = bodyPosition(caseB);
+            bodyError = Foam::mag(pA - pB)/Foam::mag(pA);
+            bodyMove = Foam::mag(pA - Foam::vector(0.27, 0.6, 0));
+        }
+        catch (const Foam::error& err)
+        {
+            FAIL() << "cannot read the final states: " << err.message();
+        }
+        std::cout << label << ": relative difference of the final states: "
+            << xName << ' ' << xError << ", " << UName << ' ' << UError
+            << ", body position " << bodyError << "; the body moved "
+            << bodyMove << " m" << std::endl;
+        EXPECT_LE(xError, 1e-12);
+        EXPECT_LE(UError, 1e-12);
+        EXPECT_LE(bodyError, 1e-12);
+        EXPECT_GT(bodyMove, 1e-4);
+    }
+
     void useSPH()
     {
         schemes_ = "method          SPH;\n";
@@ -1563,14 +1637,7 @@ TEST_F(Solver, sphRestartWithAFreeBodyContinuesExactly)
     useSPH();
     const std::string T = "0.06", twoT = "0.12";
     setControl("writeInterval", "50");
-    const double r = 0.06, mass = 0.6*waterDensity*M_PI*r*r;
-    std::ostringstream bodies;
-    bodies.precision(17);
-    bodies
-        << "bodies\n{\n    float\n    {\n        shape circle;\n"
-        << "        centre (0.27 0.6 0);\n        radius " << r << ";\n"
-        << "        motion free;\n        mass " << mass << ";\n    }\n}\n";
-    rigidBodies_ = bodies.str();
+    rigidBodies_ = floatBody(0.6);
 
     fs::path caseA, caseB;
     runContinuousAndRestarted
@@ -1588,42 +1655,11 @@ TEST_F(Solver, sphRestartWithAFreeBodyContinuesExactly)
     );
     if (HasFailure()) return;
 
-    double xError = 1, UError = 1, bodyError = 1, bodyMove = 0;
-    try
-    {
-        xError = relativeDifference
-        (
-            readState(twoT, "particlePositions", caseA),
-            readState(twoT, "particlePositions", caseB)
-        );
-        UError = relativeDifference
-        (
-            readState(twoT, "particleU", caseA),
-            readState(twoT, "particleU", caseB)
-        );
-        const auto bodyPosition = [&](const fs::path& dir)
-        {
-            Foam::IFstream is((dir/twoT/"spem"/"rigidBodies").string());
-            const Foam::dictionary state(is);
-            return state.subDict("float").get<Foam::vector>("position");
-        };
-        const Foam::vector pA = bodyPosition(caseA);
-        const Foam::vector pB = bodyPosition(caseB);
-        bodyError = Foam::mag(pA - pB)/Foam::mag(pA);
-        bodyMove = Foam::mag(pA - Foam::vector(0.27, 0.6, 0));
-    }
-    catch (const Foam::error& err)
-    {
-        FAIL() << "cannot read the final states: " << err.message();
-    }
-    std::cout << "SPH restart with a free body: relative difference of the"
-        << " final states: positions " << xError << ", U " << UError
-        << ", body position " << bodyError << "; the body moved "
-        << bodyMove << " m" << std::endl;
-    EXPECT_LE(xError, 1e-12);
-    EXPECT_LE(UError, 1e-12);
-    EXPECT_LE(bodyError, 1e-12);
-    EXPECT_GT(bodyMove, 1e-4);
+    expectFloatRestartExact
+    (
+        caseA, caseB, twoT, "particlePositions", "particleU",
+        "SPH restart with a free body"
+    );
 }
 
 
@@ -1641,14 +1677,7 @@ TEST_F(Solver, spemRestartWithASlidingFreeBodyContinuesExactly)
     ny_ = 40;
     setControl("deltaT", "2.5e-4");
     setControl("writeInterval", "200");
-    const double r = 0.06, mass = 3*waterDensity*M_PI*r*r;
-    std::ostringstream bodies;
-    bodies.precision(17);
-    bodies
-        << "bodies\n{\n    float\n    {\n        shape circle;\n"
-        << "        centre (0.27 0.6 0);\n        radius " << r << ";\n"
-        << "        motion free;\n        mass " << mass << ";\n    }\n}\n";
-    rigidBodies_ = bodies.str();
+    rigidBodies_ = floatBody(3);
 
     fs::path caseA, caseB;
     runContinuousAndRestarted
@@ -1669,40 +1698,11 @@ TEST_F(Solver, spemRestartWithASlidingFreeBodyContinuesExactly)
     if (HasFailure()) return;
     EXPECT_TRUE(fs::exists(caseB/T/"spem"/"bodyNodes"));
 
-    double xError = 1, UError = 1, bodyError = 1, bodyMove = 0;
-    try
-    {
-        xError = relativeDifference
-        (
-            readState(twoT, "points", caseA), readState(twoT, "points", caseB)
-        );
-        UError = relativeDifference
-        (
-            readState(twoT, "U", caseA), readState(twoT, "U", caseB)
-        );
-        const auto bodyPosition = [&](const fs::path& dir)
-        {
-            Foam::IFstream is((dir/twoT/"spem"/"rigidBodies").string());
-            const Foam::dictionary state(is);
-            return state.subDict("float").get<Foam::vector>("position");
-        };
-        const Foam::vector pA = bodyPosition(caseA);
-        const Foam::vector pB = bodyPosition(caseB);
-        bodyError = Foam::mag(pA - pB)/Foam::mag(pA);
-        bodyMove = Foam::mag(pA - Foam::vector(0.27, 0.6, 0));
-    }
-    catch (const Foam::error& err)
-    {
-        FAIL() << "cannot read the final states: " << err.message();
-    }
-    std::cout << "SPEM restart with a sliding free body: relative difference"
-        << " of the final states: points " << xError << ", U " << UError
-        << ", body position " << bodyError << "; the body moved "
-        << bodyMove << " m" << std::endl;
-    EXPECT_LE(xError, 1e-12);
-    EXPECT_LE(UError, 1e-12);
-    EXPECT_LE(bodyError, 1e-12);
-    EXPECT_GT(bodyMove, 1e-4);
+    expectFloatRestartExact
+    (
+        caseA, caseB, twoT, "points", "U",
+        "SPEM restart with a sliding free body"
+    );
 }
 
 
