@@ -186,6 +186,36 @@ blockData readLastBlock
     return readBlock(vtms.back(), blockName, arrayName);
 }
 
+//- The points of a block that belong to a cell (an elements block holds
+//  every mesh node, also those of elements that became particles)
+std::set<long> cellPoints(const blockData& block)
+{
+    std::set<long> used;
+    for (const std::vector<long>& cell : block.cells)
+    {
+        used.insert(cell.begin(), cell.end());
+    }
+    return used;
+}
+
+//- Add a rigidBodyState function object for body (named after it, every
+//  10 steps) to the case's controlDict; false if it has no functions
+bool addRigidBodyState(const fs::path& caseDir, const std::string& body)
+{
+    std::string text = testFiles::readText(caseDir/"system/controlDict");
+    const std::string functions = "functions\n{";
+    const size_t at = text.find(functions);
+    if (at == std::string::npos) return false;
+    text.insert
+    (
+        at + functions.size(),
+        "\n    " + body + " { type rigidBodyState; body " + body + ";"
+        " writeControl timeStep; writeInterval 10; }\n"
+    );
+    std::ofstream(caseDir/"system/controlDict") << text;
+    return true;
+}
+
 //- Index of a region in constant/spemMesh/regionNames (-1 if absent)
 long regionIndex(const fs::path& caseDir, const std::string& name)
 {
@@ -488,19 +518,7 @@ TEST(SpemValidation, submergedCylinderFeelsArchimedesBuoyancy)
                " centre (0.25 0.2 0); radius " << r << ";\n"
                "        motion prescribed; velocity (0 0 0); " << v.contact
             << "\n    }\n}\n";
-        {
-            std::string text = testFiles::readText(caseDir/"system/controlDict");
-            const std::string functions = "functions\n{";
-            const size_t at = text.find(functions);
-            ASSERT_NE(at, std::string::npos);
-            text.insert
-            (
-                at + functions.size(),
-                "\n    cylinder { type rigidBodyState; body cylinder;"
-                " writeControl timeStep; writeInterval 10; }\n"
-            );
-            std::ofstream(caseDir/"system/controlDict") << text;
-        }
+        ASSERT_TRUE(addRigidBodyState(caseDir, "cylinder"));
         ASSERT_TRUE(runCase(caseDir));
         if (!v.schemes.empty())
         {
@@ -556,15 +574,9 @@ TEST(SpemValidation, submergedCylinderFeelsArchimedesBuoyancy)
             {
                 EXPECT_EQ(particles.x.size(), 0u) << vtm;
                 const blockData elements = readBlock(vtm, "elements", "pressure");
-                // The nodes of elements (the series holds every mesh node)
-                std::set<long> used;
-                for (const std::vector<long>& cell : elements.cells)
-                {
-                    used.insert(cell.begin(), cell.end());
-                }
                 double deepest = 1;
                 int onSurface = 0;
-                for (const long i : used)
+                for (const long i : cellPoints(elements))
                 {
                     const double d = std::hypot
                     (
@@ -633,19 +645,7 @@ TEST(SpemValidation, floatingBoxRestsAtItsArchimedesDraft)
                "        motion free; mass " << mass << ";"
                " constraints (x rotation);\n    }\n}\n";
     }
-    {
-        std::string text = testFiles::readText(caseDir/"system/controlDict");
-        const std::string functions = "functions\n{";
-        const size_t at = text.find(functions);
-        ASSERT_NE(at, std::string::npos);
-        text.insert
-        (
-            at + functions.size(),
-            "\n    box { type rigidBodyState; body box;"
-            " writeControl timeStep; writeInterval 10; }\n"
-        );
-        std::ofstream(caseDir/"system/controlDict") << text;
-    }
+    ASSERT_TRUE(addRigidBodyState(caseDir, "box"));
     ASSERT_TRUE(runCase(caseDir));
 
     const std::vector<std::vector<double>> rows =
@@ -685,13 +685,8 @@ TEST(SpemValidation, floatingBoxRestsAtItsArchimedesDraft)
             y0 = std::min(y0, box.points[i]);
             y1 = std::max(y1, box.points[i]);
         }
-        std::set<long> used;
-        for (const std::vector<long>& cell : elements.cells)
-        {
-            used.insert(cell.begin(), cell.end());
-        }
         int onSides = 0;
-        for (const long i : used)
+        for (const long i : cellPoints(elements))
         {
             const double x = elements.points[2*i], y = elements.points[2*i + 1];
             const double inside = std::min
