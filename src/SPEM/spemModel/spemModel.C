@@ -1055,13 +1055,7 @@ Foam::bodyElementCoupling::preparedMesh Foam::spemModel::fitElementsToBodies
             for (label a = 0; a < 3; ++a) fixedNode[tri[3*t + a]] = true;
         }
     }
-    bool anySlide = false;
-    forAll(bodies_, b)
-    {
-        anySlide = anySlide
-         || bodies_[b].elementsContact() == rigidBody::elementContact::slide;
-    }
-    if (nFluid == 0 || !anySlide)
+    if (nFluid == 0 || !bodies_.anySliding())
     {
         // Only the water inside the bodies goes
         bodyElementCoupling::preparedMesh inside;

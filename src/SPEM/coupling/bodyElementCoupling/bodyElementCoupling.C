@@ -211,12 +211,7 @@ Foam::bodyElementCoupling::prepareMesh
     // The body each triangle is left out for (-1: kept), each node is on
     std::vector<label> outFor(nTri, -1), nodeBody(mesh.nPoints(), -1);
     std::vector<scalar> area0(nTri, 0);
-    bool anySlide = false;
-    forAll(bodies, b)
-    {
-        anySlide = anySlide
-         || bodies[b].elementsContact() == rigidBody::elementContact::slide;
-    }
+    const bool anySlide = bodies.anySliding();
 
     const std::vector<scalar>& X = mesh.points();
     for (label t = 0; t < nTri; ++t)

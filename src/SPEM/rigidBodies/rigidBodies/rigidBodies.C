@@ -76,6 +76,23 @@ Foam::label Foam::rigidBodies::findBody(const word& name) const
 }
 
 
+bool Foam::rigidBodies::anySliding() const
+{
+    forAll(*this, i)
+    {
+        if
+        (
+            operator[](i).elementsContact()
+         == rigidBody::elementContact::slide
+        )
+        {
+            return true;
+        }
+    }
+    return false;
+}
+
+
 void Foam::rigidBodies::writeState(dictionary& dict) const
 {
     for (const rigidBody& body : *this)
