@@ -5,10 +5,10 @@ Description
     case at a coarse resolution:
       - hydrostaticTank (nx 20, 800 particles, started hydrostatic and
         kept 2 s with the tutorial's damping): the pressure gradient of the
-        particles within 2 % of rho g, the bottom band's mean pressure
-        within 2 % of rho g (H - y), every band's within 2 % of the
-        hydrostatic scale rho g H; every particle kept and inside the tank
-        at every written time;
+        particles within 2 % of rho g, the mean pressure of every band
+        below the top fifth within 2 % of rho g (H - y), every band's
+        within 2 % of the hydrostatic scale rho g H; every particle kept
+        and inside the tank at every written time;
       - damBreak (nx 20, 1600 particles, up to the front reaching the far
         wall): the surge front against Martin and Moyce (1952) and
         Koshizuka and Oka (1996), every particle inside the tank.
@@ -107,7 +107,7 @@ TEST(SphValidation, hydrostaticTankPressureWithinTwoPercent)
     // bands, away from the side walls, against rho g (H - y) at the bands'
     // mean height
     const int nBands = 10;
-    double bottomError = 0, largestOffset = 0;
+    double bottomError = 0, largestOffset = 0, largestBelow = 0;
     for (int b = 0; b < nBands; ++b)
     {
         const double y0 = b*H/nBands, y1 = y0 + H/nBands;
@@ -126,6 +126,10 @@ TEST(SphValidation, hydrostaticTankPressureWithinTwoPercent)
         const double exact = rho0*g*(H - y);
         if (b == 0) bottomError = p/exact - 1;
         largestOffset = std::max(largestOffset, std::abs(p - exact));
+        if (b < nBands - 2)
+        {
+            largestBelow = std::max(largestBelow, std::abs(p/exact - 1));
+        }
         std::printf
         (
             "hydrostaticTank nx 20, t = %s s: band at mean y = %.4f m:"
@@ -162,13 +166,20 @@ TEST(SphValidation, hydrostaticTankPressureWithinTwoPercent)
     EXPECT_LT(std::abs(slope/(-rho0*g) - 1), 0.02);
     EXPECT_LT(std::abs(bottomError), 0.02);
     EXPECT_LT(largestOffset, 0.02*rho0*g*H);
+    // Every band below the top fifth within 2 % of the local rho g (H - y)
+    // (measured: at most 1.4 %, the band at 0.37 m; with the momentum
+    // equation's symmetrised gradient correction, sphFluid.H, the bands
+    // from 0.32 m up were 2.6-10 % low, a constant 45 Pa)
+    EXPECT_LT(largestBelow, 0.02);
 
-    // Not asserted (issue note): relative to the local rho g (H - y) the
-    // upper bands are 2-10 % low, a nearly constant 44 Pa: the free surface
-    // settles 0.2 particle spacings (3.5 mm) lower within 0.1 s, as the rows
-    // of element barycentres (1/3 and 2/3 of each cell) even out to rows
-    // s/2 apart and the rows next to the walls move from 0.47 to 0.35
-    // spacings from them
+    // Not asserted (issue note): the top two bands, -2.7 % and -3.8 % of
+    // the local rho g (H - y) (-21 and -11 Pa). The settled particles fill
+    // about 0.7 % less height than their volumes m/rho add up to: their
+    // mean height drops 2.5 mm within 0.5 s while their mean density stays
+    // (to 1e-5), as the rows of element barycentres (1/3 and 2/3 of each
+    // cell) rearrange near the walls. The same with or without gradient
+    // correction or shifting, and at nx 40 (top bands -3.5 and -7.8 %), so
+    // the error near the surface does not shrink with resolution
     if (!HasFailure()) fs::remove_all(caseDir);
 }
 

@@ -19,15 +19,15 @@ namespace
     //- What the momentum equation reads of the fluid particle i
     struct fluidSide
     {
-        scalar vx, vy, rho, pr, cxx, cxy, cyy;   // pr = p/rho^2, C_i
+        scalar vx, vy, rho, pr;   // pr = p/rho^2
     };
 
     //- Eq. (16): the acceleration of fluid particle i due to particle j,
-    //  pressure and viscous terms, with (dx, dy) = x_i - x_j at distance r.
-    //  G_ij = (C_i + C_j)/2 grad_i W_ij is antisymmetric in i, j; C_j = I
-    //  for dummies and ghosts. Shared by the momentum pass and the
-    //  structure force pass, so that a structure gets exactly the opposite
-    //  of the fluid's pair forces.
+    //  pressure and viscous terms, with (dx, dy) = x_i - x_j at distance r,
+    //  with the kernel gradient as the paper writes it (no correction: see
+    //  sphFluid.H). Antisymmetric in i, j. Shared by the momentum pass and
+    //  the structure force pass, so that a structure gets exactly the
+    //  opposite of the fluid's pair forces.
     template<class Kernel>
     inline void pairAcceleration
     (
@@ -42,7 +42,6 @@ namespace
         const scalar* __restrict__ rho,
         const scalar* __restrict__ p,
         const particleSet::kind* __restrict__ kind,
-        const scalar* __restrict__ C,
         const scalar mu,
         scalar& fx,
         scalar& fy
@@ -51,19 +50,11 @@ namespace
         const scalar F = Kernel::F(r, hij);
         const scalar gxw = dx*F, gyw = dy*F;
 
-        const bool corrected = kind[j] == particleSet::kind::fluid;
-        const scalar* Cj = &C[3*j];
-        const scalar bxx = corrected ? Cj[0] : 1;
-        const scalar bxy = corrected ? Cj[1] : 0;
-        const scalar byy = corrected ? Cj[2] : 1;
-        const scalar Gx = 0.5*((fi.cxx + bxx)*gxw + (fi.cxy + bxy)*gyw);
-        const scalar Gy = 0.5*((fi.cxy + bxy)*gxw + (fi.cyy + byy)*gyw);
-
         // Pressure
         const scalar rhoj = rho[j];
         const scalar pf = -m[j]*(fi.pr + p[j]/(rhoj*rhoj));
-        fx = pf*Gx;
-        fy = pf*Gy;
+        fx = pf*gxw;
+        fy = pf*gyw;
 
         // Viscous: no viscous stress at a free-slip wall
         if (kind[j] != particleSet::kind::slipWall)
@@ -261,7 +252,7 @@ void Foam::sphFluid::reorder()
     particles_.reorderField(order, 2, oldPosition_);
     particles_.reorderField(order, 2, oldVelocity_);
     particles_.reorderField(order, 1, oldDensity_);
-    // Not reordered: acceleration_, correction_, gradC_ and divR_, which
+    // Not reordered: acceleration_, gradC_ and divR_, which
     // the passes of this evaluate() recompute for every particle before
     // anything reads them
     cells_.particlesReordered();
@@ -272,7 +263,6 @@ void Foam::sphFluid::resizeFields()
 {
     const label n = particles_.size();
     acceleration_.resize(2*n, 0);
-    correction_.resize(3*n, 0);
     gradC_.resize(2*n, 0);
     divR_.resize(n, 2);
 }
@@ -291,7 +281,6 @@ void Foam::sphFluid::densityPass(const Kernel&)
     const label freshIdBegin = freshIdBegin_;
     scalar* __restrict__ rho = particles_.density().data();
     scalar* __restrict__ p = particles_.pressure().data();
-    scalar* __restrict__ C = correction_.data();
     scalar* __restrict__ gradC = gradC_.data();
     scalar* __restrict__ divR = divR_.data();
     const scalar* __restrict__ rhoOld = oldDensity_.data();
@@ -373,9 +362,6 @@ void Foam::sphFluid::densityPass(const Kernel&)
         scalar Ci[3];
         gradientCorrectionMatrix(correction, div < threshold, Mxx, Mxy, Myy, Ci);
         const scalar cxx = Ci[0], cxy = Ci[1], cyy = Ci[2];
-        C[3*i] = cxx;
-        C[3*i + 1] = cxy;
-        C[3*i + 2] = cyy;
         gradC[2*i] = gCx;
         gradC[2*i + 1] = gCy;
         divR[i] = div;
@@ -487,7 +473,6 @@ void Foam::sphFluid::momentumPass(const Kernel&)
     const scalar* __restrict__ rho = particles_.density().data();
     const scalar* __restrict__ p = particles_.pressure().data();
     const particleSet::kind* __restrict__ kind = particles_.kinds().data();
-    const scalar* __restrict__ C = correction_.data();
     scalar* __restrict__ a = acceleration_.data();
 
     const scalar mu = mu_, gx = gx_, gy = gy_, c = c_;
@@ -508,7 +493,7 @@ void Foam::sphFluid::momentumPass(const Kernel&)
         const scalar vxi = v[2*i], vyi = v[2*i + 1];
         const fluidSide fi
         {
-            vxi, vyi, rho[i], p[i]/(rho[i]*rho[i]), C[3*i], C[3*i + 1], C[3*i + 2]
+            vxi, vyi, rho[i], p[i]/(rho[i]*rho[i])
         };
         scalar ax = 0, ay = 0, wx = 0, wy = 0, gfx = 0, gfy = 0, sx = 0, sy = 0;
 
@@ -521,7 +506,7 @@ void Foam::sphFluid::momentumPass(const Kernel&)
                 pairAcceleration<Kernel>
                 (
                     fi, j, dx, dy, r, 0.5*(h[i] + h[j]),
-                    v, m, rho, p, kind, C, mu, fx, fy
+                    v, m, rho, p, kind, mu, fx, fy
                 );
                 ax += fx;
                 ay += fy;
@@ -584,7 +569,6 @@ void Foam::sphFluid::structureForcePass(const Kernel&)
     const scalar* __restrict__ p = particles_.pressure().data();
     const particleSet::kind* __restrict__ kind = particles_.kinds().data();
     const label* __restrict__ id = particles_.id().data();
-    const scalar* __restrict__ C = correction_.data();
     scalar* __restrict__ force = structureParticleForce_.data();
     const scalar mu = mu_;
 
@@ -603,15 +587,14 @@ void Foam::sphFluid::structureForcePass(const Kernel&)
                 if (kind[f] != particleSet::kind::fluid) return;
                 const fluidSide ff
                 {
-                    v[2*f], v[2*f + 1], rho[f], p[f]/(rho[f]*rho[f]),
-                    C[3*f], C[3*f + 1], C[3*f + 2]
+                    v[2*f], v[2*f + 1], rho[f], p[f]/(rho[f]*rho[f])
                 };
                 scalar fx, fy;
                 // (dx, dy) = x_w - x_f; the pair needs x_f - x_w
                 pairAcceleration<Kernel>
                 (
                     ff, w, -dx, -dy, r, 0.5*(h[f] + h[w]),
-                    v, m, rho, p, kind, C, mu, fx, fy
+                    v, m, rho, p, kind, mu, fx, fy
                 );
                 Fx -= m[f]*fx;
                 Fy -= m[f]*fy;
@@ -974,7 +957,7 @@ std::size_t Foam::sphFluid::memoryBytes() const
     };
     return
         particles_.memoryBytes() + cells_.memoryBytes()
-      + bytes(acceleration_) + bytes(correction_) + bytes(gradC_)
+      + bytes(acceleration_) + bytes(gradC_)
       + bytes(divR_) + bytes(oldPosition_) + bytes(oldVelocity_)
       + bytes(oldDensity_);
 }
