@@ -9,6 +9,10 @@ Description
         a linear velocity field on irregular particles with FPM;
       - total momentum changes only by the impulse of gravity and the wall
         forces (internal forces cancel in pairs, also with the correction);
+      - the symmetrised corrected momentum gradient carries a linear
+        pressure exactly on a regular lattice, the kernel gradient not;
+      - the initial relaxation opens the close pairs of converted
+        barycentres and changes nothing but the fluid positions;
       - wall particles fill layers and corners outside the mesh;
       - element -> particle conversion conserves mass and momentum and puts
         the particle at the barycentre (eqs. 17-18).
@@ -301,6 +305,154 @@ TEST(SphFluid, momentumChangesOnlyByGravityAndWallImpulse)
               << std::endl;
     ASSERT_GT(impulse, 0);
     EXPECT_LT(worst, 1e-12*mass + 1e-9*impulse);
+}
+
+
+TEST(SphFluid, symmetrisedCorrectionCarriesALinearPressureExactly)
+{
+    // p = G y on a regular lattice: the pressure term must give -G/rho.
+    // The kernel gradient gives -M_yy G/rho (M_yy the first moment), the
+    // symmetrised corrected one (C_i + C_j)/2 grad W exactly -G/rho
+    const scalar dx = 0.01, rho0 = 1000, c = 1000, G = 1e4;
+    const label n = 24;
+    particleSet ps = irregularParticles(n, dx, 0, 1);
+    for (label i = 0; i < ps.size(); ++i)
+    {
+        ps.density()[i] = rho0 + G*ps.positions()[2*i + 1]/(c*c);
+    }
+    const scalar lo[2] = {-1, -1}, hi[2] = {1, 1};
+    scalar error[2];
+    int k = 0;
+    for (const word form : {"kernel", "symmetrisedCorrection"})
+    {
+        sphFluid fluid
+        (
+            schemes("momentumGradient " + form + ";"),
+            particleSet(ps), rho0, c, 0, 0, 0, lo, hi
+        );
+        ASSERT_TRUE(fluid.evaluate());
+        scalar worst = 0;
+        label nChecked = 0;
+        const particleSet& q = fluid.particles();
+        for (label i = 0; i < q.size(); ++i)
+        {
+            const scalar* x = &q.positions()[2*i];
+            // Every neighbour in the bulk: the edge particles' C is I
+            if (std::min({x[0], x[1], n*dx - x[0], n*dx - x[1]}) < 6*dx) continue;
+            ++nChecked;
+            const scalar exact = -G/q.density()[i];
+            worst = std::max
+            (
+                worst, std::abs(fluid.accelerations()[2*i + 1]/exact - 1)
+            );
+            EXPECT_LT(std::abs(fluid.accelerations()[2*i]), 1e-9*G/rho0);
+        }
+        ASSERT_GT(nChecked, 100);
+        std::cout << form << ": worst relative error of the pressure"
+                  << " acceleration " << worst << std::endl;
+        error[k++] = worst;
+    }
+    EXPECT_GT(error[0], 5e-3);
+    EXPECT_LT(error[1], 1e-5);
+}
+
+
+TEST(SphFluid, relaxationOpensBarycentrePairsAndKeepsMassDensityVelocity)
+{
+    // The barycentres of a split right mesh, (2/3, 1/3) and (1/3, 2/3) of
+    // each cell: a close pair (0.47 dx apart) per cell, in a tank of walls
+    // open at the top
+    const scalar dx = 0.01;
+    const label n = 16;
+    std::mt19937 gen(7);
+    std::uniform_real_distribution<scalar> u(-0.1, 0.1);
+    particleSet ps;
+    const scalar h = 1.3*dx/std::sqrt(2.0);
+    for (label j = 0; j < n; ++j)
+    {
+        for (label i = 0; i < n; ++i)
+        {
+            for (const scalar f : {1.0/3, 2.0/3})
+            {
+                ps.append
+                (
+                    (i + 1 - f)*dx, (j + f)*dx, u(gen), u(gen),
+                    1000 + u(gen), 0, 500*dx*dx, h
+                );
+            }
+        }
+    }
+    const label nFluid = ps.size();
+    const scalar ws = dx/std::sqrt(2.0);
+    for (label layer = 0; layer < 3; ++layer)
+    {
+        const scalar off = (layer + 0.5)*ws;
+        for (label k = -3; k < label(n*dx/ws) + 3; ++k)
+        {
+            const scalar s = (k + 0.5)*ws;
+            ps.append(s, -off, 0, 0, 1000, 0, 1000*ws*ws, h, particleSet::kind::wall);
+            if (k >= 0)
+            {
+                ps.append(-off, s, 0, 0, 1000, 0, 1000*ws*ws, h, particleSet::kind::wall);
+                ps.append(n*dx + off, s, 0, 0, 1000, 0, 1000*ws*ws, h, particleSet::kind::wall);
+            }
+        }
+    }
+    const particleSet initial = ps;
+
+    // Smallest distance between two fluid particles away from the walls
+    // and the surface
+    auto closest = [&](const particleSet& q)
+    {
+        const scalar* x = q.positions().data();
+        scalar d = GREAT;
+        for (label i = 0; i < nFluid; ++i)
+        {
+            if (std::min({x[2*i], x[2*i + 1], n*dx - x[2*i], n*dx - x[2*i + 1]}) < 3*dx)
+            {
+                continue;
+            }
+            for (label j = 0; j < nFluid; ++j)
+            {
+                if (j == i) continue;
+                d = std::min(d, std::hypot(x[2*i] - x[2*j], x[2*i + 1] - x[2*j + 1]));
+            }
+        }
+        return d;
+    };
+
+    const scalar lo[2] = {-1, -1}, hi[2] = {1, 1};
+    sphFluid fluid(schemes(""), particleSet(initial), 1000, 20, 1e-3, 0, -9.81, lo, hi);
+    const scalar lastShift = fluid.relax(200);
+    const particleSet& q = fluid.particles();
+    const scalar before = closest(initial), after = closest(q);
+    std::cout << "closest interior pair " << before/dx << " dx before, "
+              << after/dx << " dx after; last shift " << lastShift
+              << " h" << std::endl;
+    EXPECT_NEAR(before/dx, std::sqrt(2.0)/3, 1e-9);
+    // Opened towards the staggered lattice (nearest distance dx/sqrt 2)
+    EXPECT_GT(after/dx, 0.65);
+    EXPECT_LT(lastShift, 5e-3);
+
+    ASSERT_EQ(q.size(), initial.size());
+    for (label i = 0; i < q.size(); ++i)
+    {
+        EXPECT_EQ(q.mass()[i], initial.mass()[i]);
+        EXPECT_EQ(q.density()[i], initial.density()[i]);
+        EXPECT_EQ(q.velocities()[2*i], initial.velocities()[2*i]);
+        EXPECT_EQ(q.velocities()[2*i + 1], initial.velocities()[2*i + 1]);
+        if (i >= nFluid)
+        {
+            // The walls stay
+            EXPECT_EQ(q.positions()[2*i], initial.positions()[2*i]);
+            EXPECT_EQ(q.positions()[2*i + 1], initial.positions()[2*i + 1]);
+        }
+        else
+        {
+            const scalar* x = &q.positions()[2*i];
+            EXPECT_TRUE(x[0] > 0 && x[0] < n*dx && x[1] > 0) << i;
+        }
+    }
 }
 
 

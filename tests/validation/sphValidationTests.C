@@ -9,6 +9,9 @@ Description
         below the top fifth within 2 % of rho g (H - y), every band's
         within 2 % of the hydrostatic scale rho g H; every particle kept
         and inside the tank at every written time;
+      - hydrostaticTank relaxed (nx 40, 3200 particles, sph/initialRelaxation
+        and momentumGradient symmetrisedCorrection): every band up to the
+        surface within 2 % of rho g (H - y), the column's height kept;
       - damBreak (nx 20, 1600 particles, up to the front reaching the far
         wall): the surge front against Martin and Moyce (1952) and
         Koshizuka and Oka (1996), every particle inside the tank.
@@ -82,6 +85,54 @@ void expectParticlesKeptInside
     }
 }
 
+//- Mean height and mean pressure p = c^2 (rho - rho0) of the particles in
+//  nBands horizontal bands of height H/nBands, away from the side walls
+//  (0.1 W to 0.9 W, W = H)
+struct band { double y, p; };
+std::vector<band> hydrostaticBands
+(
+    const fs::path& state,
+    const size_t n,
+    const int nBands,
+    const double H,
+    const double rho0,
+    const double c
+)
+{
+    const std::vector<double> x = readFoamList(state/"spem/particlePositions", 3);
+    const std::vector<double> rho = readFoamList(state/"spem/particleRho", 1);
+    std::vector<band> bands;
+    if (rho.size() != n || x.size() != 3*n) return bands;
+    for (int b = 0; b < nBands; ++b)
+    {
+        const double y0 = b*H/nBands, y1 = y0 + H/nBands;
+        double sumP = 0, sumY = 0;
+        int count = 0;
+        for (size_t i = 0; i < n; ++i)
+        {
+            const double px = x[3*i], py = x[3*i + 1];
+            if (py < y0 || py >= y1 || px < 0.1*H || px > 0.9*H) continue;
+            sumP += c*c*(rho[i] - rho0);
+            sumY += py;
+            ++count;
+        }
+        if (count == 0) return {};
+        bands.push_back({sumY/count, sumP/count});
+    }
+    return bands;
+}
+
+//- Add entries to the sph sub-dictionary of a case's system/spemSchemes
+void addSphEntries(const fs::path& caseDir, const std::string& entries)
+{
+    const fs::path file = caseDir/"system/spemSchemes";
+    std::string text = testFiles::readText(file);
+    const size_t at = text.find("sph\n{\n");
+    ASSERT_NE(at, std::string::npos) << "no sph { in " << file;
+    text.insert(at + 6, entries);
+    std::ofstream(file) << text;
+}
+
 } // End anonymous namespace
 
 
@@ -107,22 +158,12 @@ TEST(SphValidation, hydrostaticTankPressureWithinTwoPercent)
     // bands, away from the side walls, against rho g (H - y) at the bands'
     // mean height
     const int nBands = 10;
+    const std::vector<band> bands = hydrostaticBands(last, n, nBands, H, rho0, c);
+    ASSERT_EQ(bands.size(), size_t(nBands));
     double bottomError = 0, largestOffset = 0, largestBelow = 0;
     for (int b = 0; b < nBands; ++b)
     {
-        const double y0 = b*H/nBands, y1 = y0 + H/nBands;
-        double sumP = 0, sumY = 0;
-        int count = 0;
-        for (size_t i = 0; i < n; ++i)
-        {
-            const double px = x[3*i], py = x[3*i + 1];
-            if (py < y0 || py >= y1 || px < 0.1*H || px > 0.9*H) continue;
-            sumP += c*c*(rho[i] - rho0);
-            sumY += py;
-            ++count;
-        }
-        ASSERT_GT(count, 0);
-        const double p = sumP/count, y = sumY/count;
+        const double p = bands[b].p, y = bands[b].y;
         const double exact = rho0*g*(H - y);
         if (b == 0) bottomError = p/exact - 1;
         largestOffset = std::max(largestOffset, std::abs(p - exact));
@@ -184,7 +225,81 @@ TEST(SphValidation, hydrostaticTankPressureWithinTwoPercent)
     // 0.75 % of its height at constant density to carry its weight again.
     // The same with or without gradient correction or shifting, and at
     // nx 40 (top bands -3.5 and -7.8 %), so the error near the surface
-    // does not shrink with resolution
+    // does not shrink with resolution. With the initial relaxation and the
+    // symmetrised correction (sphFluid.H) it does: next test
+    if (!HasFailure()) fs::remove_all(caseDir);
+}
+
+
+TEST(SphValidation, hydrostaticTankRelaxedWithinTwoPercentUpToTheSurface)
+{
+    // The tutorial at nx 40 with the barycentres relaxed before the start
+    // and the symmetrised corrected gradient in the momentum equation
+    const fs::path caseDir =
+        copyTutorial("hydrostaticTank", "spemHydrostaticTankRelaxed");
+    replaceEntry(caseDir/"system/blockMeshDict", "nx", "40");
+    replaceEntry(caseDir/"system/controlDict", "endTime", "2");
+    replaceEntry(caseDir/"system/controlDict", "writeInterval", "0.5");
+    addSphEntries
+    (
+        caseDir,
+        "    momentumGradient symmetrisedCorrection;\n"
+        "    initialRelaxation 400;\n"
+    );
+    ASSERT_TRUE(runCase(caseDir));
+
+    const double H = 0.5, rho0 = 1000, c = 25, g = 9.81;
+    const size_t n = 3200;
+    expectParticlesKeptInside(caseDir, n, 0, H, 0);
+
+    // Relaxed at t = 0: the particles left the barycentres
+    const std::vector<fs::path> states = particleStates(caseDir);
+    const std::vector<double> x0 =
+        readFoamList(states.front()/"spem/particlePositions", 3);
+    const std::vector<double> x1 =
+        readFoamList(states.back()/"spem/particlePositions", 3);
+    ASSERT_EQ(x0.size(), 3*n);
+    ASSERT_EQ(x1.size(), 3*n);
+    const double spacing = H/40;
+    bool offBarycentre = false;
+    double meanSink = 0;
+    for (size_t i = 0; i < n; ++i)
+    {
+        // Barycentres of split right cells: (1/3, 2/3) or (2/3, 1/3)
+        const double fx = std::fmod(x0[3*i]/spacing, 1.0);
+        offBarycentre =
+            offBarycentre
+         || std::min(std::abs(fx - 1.0/3), std::abs(fx - 2.0/3)) > 0.02;
+        meanSink += (x0[3*i + 1] - x1[3*i + 1])/n;
+    }
+    EXPECT_TRUE(offBarycentre) << "initialRelaxation moved no particle";
+
+    // Every band, the top one too, within 2 % of the local rho g (H - y)
+    // (measured: at most 1.4 %, the top band; without the two entries the
+    // top bands are 3.8 and 8.5 % low at nx 40, README)
+    const std::vector<band> bands =
+        hydrostaticBands(states.back(), n, 10, H, rho0, c);
+    ASSERT_EQ(bands.size(), 10u);
+    double largest = 0;
+    for (const band& b : bands)
+    {
+        const double exact = rho0*g*(H - b.y);
+        std::printf
+        (
+            "hydrostaticTank relaxed, nx 40: band at mean y = %.4f m: p %.1f"
+            " Pa, rho g (H - y) %.1f Pa, error %+.2f %%\n",
+            b.y, b.p, exact, 100*(b.p/exact - 1)
+        );
+        largest = std::max(largest, std::abs(b.p/exact - 1));
+    }
+    std::printf
+    (
+        "hydrostaticTank relaxed, nx 40: largest band error %.2f %%, mean"
+        " sink %.2f mm\n", 100*largest, 1e3*meanSink
+    );
+    EXPECT_LT(largest, 0.02);
+    // The column keeps its height (the barycentres sink 2.1 mm at nx 40)
+    EXPECT_LT(std::abs(meanSink), 0.5e-3);
     if (!HasFailure()) fs::remove_all(caseDir);
 }
 

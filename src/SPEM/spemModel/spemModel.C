@@ -652,7 +652,8 @@ void Foam::spemModel::buildParticles
     const sphFluid::controls ctrl = sphFluid::controls::read(schemes_);
     particleSet ps;
     std::vector<scalar> rhoOld;
-    if (readParticleState(ps, rhoOld))
+    const bool restart = readParticleState(ps, rhoOld);
+    if (restart)
     {
         if (ps.size() != label(fluidElements.size()))
         {
@@ -680,6 +681,24 @@ void Foam::spemModel::buildParticles
     );
     Info<< "Particles (method SPH): " << nFluid << " fluid particles from "
         << fluidElements.size() << " fluid elements" << nl;
+
+    // Initial relaxation of the barycentres (sphFluid.H), once, at t = 0;
+    // a restart reads the relaxed positions
+    if (ctrl.initialRelaxation > 0 && !restart)
+    {
+        if (!bodies_.empty())
+        {
+            FatalIOErrorInFunction(schemes_)
+                << "sph/initialRelaxation " << ctrl.initialRelaxation
+                << ": the relaxation does not see rigid bodies yet; set it"
+                << " to 0 for a case with constant/rigidBodyProperties"
+                << exit(FatalIOError);
+        }
+        const scalar lastShift = particles_->relax(ctrl.initialRelaxation);
+        Info<< "    initial relaxation: " << ctrl.initialRelaxation
+            << " iterations, last shift at most " << lastShift
+            << " smoothing lengths" << nl;
+    }
 }
 
 
@@ -1426,6 +1445,17 @@ Foam::spemModel::spemModel(const Time& runTime)
     forAll(materials, r)
     {
         anySolid = anySolid || (materials.set(r) && !materials[r].isFluid());
+    }
+    if
+    (
+        (method_ == methodType::SPEM || anySolid)
+     && sphFluid::controls::read(schemes_).initialRelaxation > 0
+    )
+    {
+        FatalIOErrorInFunction(schemes_)
+            << "sph/initialRelaxation relaxes the particles of method SPH"
+            << " without solids; with elements (method SPEM, or solid"
+            << " regions) set it to 0" << exit(FatalIOError);
     }
     if (method_ == methodType::SPEM || anySolid)
     {

@@ -20,14 +20,55 @@ namespace
     struct fluidSide
     {
         scalar vx, vy, rho, pr;   // pr = p/rho^2
+        scalar cxx, cxy, cyy;     // C_i (momentumGradient symmetrisedCorrection)
     };
 
+    //- The correction C_i that particle i stored, or I without one
+    inline fluidSide makeFluidSide
+    (
+        const label i,
+        const scalar* __restrict__ v,
+        const scalar* __restrict__ rho,
+        const scalar* __restrict__ p,
+        const scalar* __restrict__ C
+    )
+    {
+        const scalar* Ci = C ? &C[3*i] : nullptr;
+        return fluidSide
+        {
+            v[2*i], v[2*i + 1], rho[i], p[i]/(rho[i]*rho[i]),
+            Ci ? Ci[0] : 1, Ci ? Ci[1] : 0, Ci ? Ci[2] : 1
+        };
+    }
+
+    //- A shift (sx, sy) of a free-surface particle loses its component
+    //  along grad C, the surface normal: surface particles move along the
+    //  surface only
+    inline void tangentialShift
+    (
+        const scalar gCx,
+        const scalar gCy,
+        scalar& sx,
+        scalar& sy
+    )
+    {
+        const scalar g2 = gCx*gCx + gCy*gCy;
+        if (g2 > 0)
+        {
+            const scalar sn = (sx*gCx + sy*gCy)/g2;
+            sx -= sn*gCx;
+            sy -= sn*gCy;
+        }
+    }
+
     //- Eq. (16): the acceleration of fluid particle i due to particle j,
-    //  pressure and viscous terms, with (dx, dy) = x_i - x_j at distance r,
-    //  with the kernel gradient as the paper writes it (no correction: see
-    //  sphFluid.H). Antisymmetric in i, j. Shared by the momentum pass and
-    //  the structure force pass, so that a structure gets exactly the
-    //  opposite of the fluid's pair forces.
+    //  pressure and viscous terms, with (dx, dy) = x_i - x_j at distance r.
+    //  Pressure with the kernel gradient as the paper writes it (C null),
+    //  or with G_ij = (C_i + C_j)/2 grad_i W_ij (C: 3 per particle, C_j = I
+    //  for dummies and ghosts; see sphFluid.H, momentumGradient). Either is
+    //  antisymmetric in i, j. Shared by the momentum pass and the
+    //  structure force pass, so that a structure gets exactly the opposite
+    //  of the fluid's pair forces.
     template<class Kernel>
     inline void pairAcceleration
     (
@@ -42,6 +83,7 @@ namespace
         const scalar* __restrict__ rho,
         const scalar* __restrict__ p,
         const particleSet::kind* __restrict__ kind,
+        const scalar* __restrict__ C,
         const scalar mu,
         scalar& fx,
         scalar& fy
@@ -53,8 +95,21 @@ namespace
         // Pressure
         const scalar rhoj = rho[j];
         const scalar pf = -m[j]*(fi.pr + p[j]/(rhoj*rhoj));
-        fx = pf*gxw;
-        fy = pf*gyw;
+        if (C)
+        {
+            const bool corrected = kind[j] == particleSet::kind::fluid;
+            const scalar* Cj = &C[3*j];
+            const scalar bxx = corrected ? Cj[0] : 1;
+            const scalar bxy = corrected ? Cj[1] : 0;
+            const scalar byy = corrected ? Cj[2] : 1;
+            fx = 0.5*pf*((fi.cxx + bxx)*gxw + (fi.cxy + bxy)*gyw);
+            fy = 0.5*pf*((fi.cxy + bxy)*gxw + (fi.cyy + byy)*gyw);
+        }
+        else
+        {
+            fx = pf*gxw;
+            fy = pf*gyw;
+        }
 
         // Viscous: no viscous stress at a free-slip wall
         if (kind[j] != particleSet::kind::slipWall)
@@ -78,6 +133,14 @@ Foam::sphFluid::gradientCorrectionTypeNames
 });
 
 
+const Foam::Enum<Foam::sphFluid::momentumGradientType>
+Foam::sphFluid::momentumGradientTypeNames
+({
+    { momentumGradientType::kernel, "kernel" },
+    { momentumGradientType::symmetrisedCorrection, "symmetrisedCorrection" },
+});
+
+
 // * * * * * * * * * * * * * * * * * controls  * * * * * * * * * * * * * * * //
 
 Foam::sphFluid::controls
@@ -92,7 +155,8 @@ Foam::sphFluid::controls::read(const dictionary& schemesDict)
         *d,
         {
             "smoothingLengthRatio", "gradientCorrection", "densityDiffusion",
-            "shifting", "freeSurfaceThreshold", "wallLayers"
+            "shifting", "freeSurfaceThreshold", "wallLayers",
+            "momentumGradient", "initialRelaxation", "relaxationCoefficient"
         }
     );
     c.smoothingLengthRatio =
@@ -108,6 +172,18 @@ Foam::sphFluid::controls::read(const dictionary& schemesDict)
     c.freeSurfaceThreshold =
         d->getOrDefault<scalar>("freeSurfaceThreshold", c.freeSurfaceThreshold);
     c.wallLayers = d->getOrDefault<label>("wallLayers", c.wallLayers);
+    c.momentumGradient =
+        momentumGradientTypeNames.getOrDefault
+        (
+            "momentumGradient", *d, c.momentumGradient
+        );
+    c.initialRelaxation =
+        d->getOrDefault<label>("initialRelaxation", c.initialRelaxation);
+    c.relaxationCoefficient =
+        d->getOrDefault<scalar>
+        (
+            "relaxationCoefficient", c.relaxationCoefficient
+        );
 
     auto bad = [&](const char* key, const char* what)
     {
@@ -133,6 +209,14 @@ Foam::sphFluid::controls::read(const dictionary& schemesDict)
     if (c.wallLayers < 0 || c.wallLayers > 10)
     {
         bad("wallLayers", "must lie in [0, 10] (0: enough for the support)");
+    }
+    if (c.initialRelaxation < 0 || c.initialRelaxation > 100000)
+    {
+        bad("initialRelaxation", "must lie in [0, 100000] iterations (0: off)");
+    }
+    if (!(c.relaxationCoefficient > 0 && c.relaxationCoefficient <= 0.2))
+    {
+        bad("relaxationCoefficient", "must lie in (0, 0.2] (typically 0.1)");
     }
     return c;
 }
@@ -252,7 +336,7 @@ void Foam::sphFluid::reorder()
     particles_.reorderField(order, 2, oldPosition_);
     particles_.reorderField(order, 2, oldVelocity_);
     particles_.reorderField(order, 1, oldDensity_);
-    // Not reordered: acceleration_, gradC_ and divR_, which
+    // Not reordered: acceleration_, correction_, gradC_ and divR_, which
     // the passes of this evaluate() recompute for every particle before
     // anything reads them
     cells_.particlesReordered();
@@ -263,6 +347,10 @@ void Foam::sphFluid::resizeFields()
 {
     const label n = particles_.size();
     acceleration_.resize(2*n, 0);
+    if (controls_.momentumGradient == momentumGradientType::symmetrisedCorrection)
+    {
+        correction_.resize(3*n, 0);
+    }
     gradC_.resize(2*n, 0);
     divR_.resize(n, 2);
 }
@@ -283,6 +371,7 @@ void Foam::sphFluid::densityPass(const Kernel&)
     scalar* __restrict__ p = particles_.pressure().data();
     scalar* __restrict__ gradC = gradC_.data();
     scalar* __restrict__ divR = divR_.data();
+    scalar* __restrict__ C = correction_.empty() ? nullptr : correction_.data();
     const scalar* __restrict__ rhoOld = oldDensity_.data();
 
     const scalar dt = pendingDeltaT_;
@@ -362,6 +451,12 @@ void Foam::sphFluid::densityPass(const Kernel&)
         scalar Ci[3];
         gradientCorrectionMatrix(correction, div < threshold, Mxx, Mxy, Myy, Ci);
         const scalar cxx = Ci[0], cxy = Ci[1], cyy = Ci[2];
+        if (C)
+        {
+            C[3*i] = cxx;
+            C[3*i + 1] = cxy;
+            C[3*i + 2] = cyy;
+        }
         gradC[2*i] = gCx;
         gradC[2*i + 1] = gCy;
         divR[i] = div;
@@ -473,6 +568,8 @@ void Foam::sphFluid::momentumPass(const Kernel&)
     const scalar* __restrict__ rho = particles_.density().data();
     const scalar* __restrict__ p = particles_.pressure().data();
     const particleSet::kind* __restrict__ kind = particles_.kinds().data();
+    const scalar* __restrict__ C =
+        correction_.empty() ? nullptr : correction_.data();
     scalar* __restrict__ a = acceleration_.data();
 
     const scalar mu = mu_, gx = gx_, gy = gy_, c = c_;
@@ -491,10 +588,7 @@ void Foam::sphFluid::momentumPass(const Kernel&)
         }
 
         const scalar vxi = v[2*i], vyi = v[2*i + 1];
-        const fluidSide fi
-        {
-            vxi, vyi, rho[i], p[i]/(rho[i]*rho[i])
-        };
+        const fluidSide fi = makeFluidSide(i, v, rho, p, C);
         scalar ax = 0, ay = 0, wx = 0, wy = 0, gfx = 0, gfy = 0, sx = 0, sy = 0;
 
         cells_.forEachNeighbour
@@ -506,7 +600,7 @@ void Foam::sphFluid::momentumPass(const Kernel&)
                 pairAcceleration<Kernel>
                 (
                     fi, j, dx, dy, r, 0.5*(h[i] + h[j]),
-                    v, m, rho, p, kind, mu, fx, fy
+                    v, m, rho, p, kind, C, mu, fx, fy
                 );
                 ax += fx;
                 ay += fy;
@@ -569,6 +663,8 @@ void Foam::sphFluid::structureForcePass(const Kernel&)
     const scalar* __restrict__ p = particles_.pressure().data();
     const particleSet::kind* __restrict__ kind = particles_.kinds().data();
     const label* __restrict__ id = particles_.id().data();
+    const scalar* __restrict__ C =
+        correction_.empty() ? nullptr : correction_.data();
     scalar* __restrict__ force = structureParticleForce_.data();
     const scalar mu = mu_;
 
@@ -585,16 +681,13 @@ void Foam::sphFluid::structureForcePass(const Kernel&)
             [&](const label f, const scalar dx, const scalar dy, const scalar r)
             {
                 if (kind[f] != particleSet::kind::fluid) return;
-                const fluidSide ff
-                {
-                    v[2*f], v[2*f + 1], rho[f], p[f]/(rho[f]*rho[f])
-                };
+                const fluidSide ff = makeFluidSide(f, v, rho, p, C);
                 scalar fx, fy;
                 // (dx, dy) = x_w - x_f; the pair needs x_f - x_w
                 pairAcceleration<Kernel>
                 (
                     ff, w, -dx, -dy, r, 0.5*(h[f] + h[w]),
-                    v, m, rho, p, kind, mu, fx, fy
+                    v, m, rho, p, kind, C, mu, fx, fy
                 );
                 Fx -= m[f]*fx;
                 Fy -= m[f]*fy;
@@ -693,19 +786,61 @@ bool Foam::sphFluid::advance(const scalar dt)
         scalar sx = -D*gradC[2*i], sy = -D*gradC[2*i + 1];
         if (divR[i] < threshold)
         {
-            const scalar g2 = gradC[2*i]*gradC[2*i] + gradC[2*i+1]*gradC[2*i+1];
-            if (g2 > 0)
-            {
-                const scalar sn = (sx*gradC[2*i] + sy*gradC[2*i + 1])/g2;
-                sx -= sn*gradC[2*i];
-                sy -= sn*gradC[2*i + 1];
-            }
+            tangentialShift(gradC[2*i], gradC[2*i + 1], sx, sy);
         }
         x[2*i] += dt*vx + sx;
         x[2*i + 1] += dt*vy + sy;
     }
     pendingDeltaT_ = dt;
     return true;
+}
+
+
+Foam::scalar Foam::sphFluid::relax(const label iterations)
+{
+    const label n = particles_.size();
+    const scalar kappa = kernel_->support();
+    const scalar beta = controls_.relaxationCoefficient;
+    const scalar threshold = controls_.freeSurfaceThreshold;
+    const scalar cap = relaxationMaxShift;
+    scalar largest = 0;
+    for (label it = 0; it < iterations; ++it)
+    {
+        cells_.update(particles_, kappa*particles_.maxSmoothingLength());
+        // No step pending: the density pass keeps every density and only
+        // measures grad C and div r at the current positions
+        pendingDeltaT_ = 0;
+        kernel_->visit([this](const auto& k) { densityPass(k); });
+
+        scalar* __restrict__ x = particles_.positions().data();
+        const scalar* __restrict__ h = particles_.smoothingLength().data();
+        const scalar* __restrict__ gradC = gradC_.data();
+        const scalar* __restrict__ divR = divR_.data();
+        const particleSet::kind* __restrict__ kind = particles_.kinds().data();
+        largest = 0;
+        #pragma omp parallel for schedule(static) reduction(max: largest) if(n > minParallelLoop)
+        for (label i = 0; i < n; ++i)
+        {
+            if (kind[i] != particleSet::kind::fluid) continue;
+            const scalar D = beta*h[i]*h[i];
+            scalar sx = -D*gradC[2*i], sy = -D*gradC[2*i + 1];
+            if (divR[i] < threshold)
+            {
+                tangentialShift(gradC[2*i], gradC[2*i + 1], sx, sy);
+            }
+            const scalar s = std::sqrt(sx*sx + sy*sy)/h[i];
+            if (s > cap)
+            {
+                sx *= cap/s;
+                sy *= cap/s;
+            }
+            largest = std::max(largest, std::min(s, cap));
+            x[2*i] += sx;
+            x[2*i + 1] += sy;
+        }
+    }
+    oldPosition_ = particles_.positions();
+    return largest;
 }
 
 
@@ -957,7 +1092,7 @@ std::size_t Foam::sphFluid::memoryBytes() const
     };
     return
         particles_.memoryBytes() + cells_.memoryBytes()
-      + bytes(acceleration_) + bytes(gradC_)
+      + bytes(acceleration_) + bytes(correction_) + bytes(gradC_)
       + bytes(divR_) + bytes(oldPosition_) + bytes(oldVelocity_)
       + bytes(oldDensity_);
 }
