@@ -1810,7 +1810,11 @@ TEST_F(Solver, outOfRangeSphValueStops)
             {"freeSurfaceThreshold", "-0.5"},
             {"freeSurfaceThreshold", "2.5"},
             {"wallLayers", "-1"},
-            {"wallLayers", "11"}
+            {"wallLayers", "11"},
+            {"initialRelaxation", "-1"},
+            {"initialRelaxation", "100001"},
+            {"relaxationCoefficient", "0"},
+            {"relaxationCoefficient", "0.3"}
         }
     )
     {
@@ -1826,6 +1830,36 @@ TEST_F(Solver, outOfRangeSphValueStops)
         );
         EXPECT_FALSE(contains(text, "Starting time loop")) << text;
     }
+}
+
+
+TEST_F(Solver, initialRelaxationWithElementsStops)
+{
+    // The relaxation moves particles only: with elements (method SPEM)
+    // it would leave the element-particle interface, so it is refused
+    schemes_ = "method          SPEM;\nsph\n{\n    initialRelaxation 10;\n}\n";
+    const std::string text = runExpectingFatalError();
+    expectInLog
+    (
+        text, {"FATAL IO ERROR", "sph/initialRelaxation", "system/spemSchemes"}
+    );
+    EXPECT_FALSE(contains(text, "Starting time loop")) << text;
+}
+
+
+TEST_F(Solver, unknownMomentumGradientStopsListingThem)
+{
+    schemes_ =
+        "method          SPH;\nsph\n{\n    momentumGradient corrected;\n}\n";
+    const std::string text = runExpectingFatalError();
+    expectInLog
+    (
+        text,
+        {
+            "FATAL IO ERROR", "corrected", "kernel", "symmetrisedCorrection",
+            "system/spemSchemes"
+        }
+    );
 }
 
 
