@@ -686,14 +686,6 @@ void Foam::spemModel::buildParticles
     // a restart reads the relaxed positions
     if (ctrl.initialRelaxation > 0 && !restart)
     {
-        if (!bodies_.empty())
-        {
-            FatalIOErrorInFunction(schemes_)
-                << "sph/initialRelaxation " << ctrl.initialRelaxation
-                << ": the relaxation does not see rigid bodies yet; set it"
-                << " to 0 for a case with constant/rigidBodyProperties"
-                << exit(FatalIOError);
-        }
         const scalar lastShift = particles_->relax(ctrl.initialRelaxation);
         Info<< "    initial relaxation: " << ctrl.initialRelaxation
             << " iterations, last shift at most " << lastShift
@@ -1446,16 +1438,20 @@ Foam::spemModel::spemModel(const Time& runTime)
     {
         anySolid = anySolid || (materials.set(r) && !materials[r].isFluid());
     }
+    // The relaxation sees fluid and wall particles only: neither elements
+    // (method SPEM, solid regions) nor the rigid bodies' dummy particles,
+    // which are placed after it
     if
     (
-        (method_ == methodType::SPEM || anySolid)
+        (method_ == methodType::SPEM || anySolid || !bodies_.empty())
      && sphFluid::controls::read(schemes_).initialRelaxation > 0
     )
     {
         FatalIOErrorInFunction(schemes_)
             << "sph/initialRelaxation relaxes the particles of method SPH"
-            << " without solids; with elements (method SPEM, or solid"
-            << " regions) set it to 0" << exit(FatalIOError);
+            << " without solids or rigid bodies; with elements (method SPEM,"
+            << " solid regions) or constant/rigidBodyProperties set it to 0"
+            << exit(FatalIOError);
     }
     if (method_ == methodType::SPEM || anySolid)
     {

@@ -371,7 +371,7 @@ void Foam::sphFluid::densityPass(const Kernel&)
     scalar* __restrict__ p = particles_.pressure().data();
     scalar* __restrict__ gradC = gradC_.data();
     scalar* __restrict__ divR = divR_.data();
-    scalar* __restrict__ C = correction_.empty() ? nullptr : correction_.data();
+    scalar* __restrict__ C = correctionData();
     const scalar* __restrict__ rhoOld = oldDensity_.data();
 
     const scalar dt = pendingDeltaT_;
@@ -568,8 +568,7 @@ void Foam::sphFluid::momentumPass(const Kernel&)
     const scalar* __restrict__ rho = particles_.density().data();
     const scalar* __restrict__ p = particles_.pressure().data();
     const particleSet::kind* __restrict__ kind = particles_.kinds().data();
-    const scalar* __restrict__ C =
-        correction_.empty() ? nullptr : correction_.data();
+    const scalar* __restrict__ C = correctionData();
     scalar* __restrict__ a = acceleration_.data();
 
     const scalar mu = mu_, gx = gx_, gy = gy_, c = c_;
@@ -663,8 +662,7 @@ void Foam::sphFluid::structureForcePass(const Kernel&)
     const scalar* __restrict__ p = particles_.pressure().data();
     const particleSet::kind* __restrict__ kind = particles_.kinds().data();
     const label* __restrict__ id = particles_.id().data();
-    const scalar* __restrict__ C =
-        correction_.empty() ? nullptr : correction_.data();
+    const scalar* __restrict__ C = correctionData();
     scalar* __restrict__ force = structureParticleForce_.data();
     const scalar mu = mu_;
 
