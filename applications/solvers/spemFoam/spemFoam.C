@@ -13,21 +13,10 @@ Usage
     spemFoam [-case dir]
 
     Reads constant/spemMesh (from spemMeshConvert), constant/spemProperties,
-    constant/g, system/spemSchemes and system/controlDict:
-        deltaT          first (adjustTimeStep yes) or fixed time step [s]
-        adjustTimeStep  yes: deltaT = maxCo * stable step, bounded by
-                        maxDeltaT; no: a deltaT above maxCo times the stable
-                        step stops the run (default no)
-        maxCo           Courant number: elements on the fastest wave speed
-                        and the smallest element altitude, particles on
-                        h/(c + |v|) (see sphFluid) (default 0.9; the
-                        measured critical value is 1.33-1.64 for elements
-                        on regular meshes, 1.5-1.75 for particles, see
-                        tests/validation/stabilityTests.C and
-                        sphValidationTests.C)
-        maxDeltaT       upper bound on the adjusted step (default great)
-        logInterval     steps between log entries (default 100; every write
-                        time is logged too)
+    constant/g, system/spemSchemes (see spemModel, spemMethod) and
+    system/controlDict (the time step: see timeStepControl; Courant number
+    1 is the elements' fastest wave over their smallest altitude and the
+    particles' h/(c + |v|)).
     Writes <time>/spem/ (restart state), VTK/<case>.pvd (ParaView series)
     and postProcessing/ (function objects of controlDict `functions`).
 
@@ -36,6 +25,7 @@ Usage
 #include "argList.H"
 #include "Time.H"
 #include "spemModel.H"
+#include "timeStepControl.H"
 
 using namespace Foam;
 
@@ -52,107 +42,30 @@ int main(int argc, char *argv[])
     #include "createTime.H"
 
     spemModel model(runTime);
-
-    const dictionary& controls = runTime.controlDict();
-    const bool adjustTimeStep =
-        controls.getOrDefault<Switch>("adjustTimeStep", false);
-    const scalar maxCo = controls.getOrDefault<scalar>("maxCo", 0.9);
-    const scalar maxDeltaT = controls.getOrDefault<scalar>("maxDeltaT", GREAT);
-    const label logInterval = controls.getOrDefault<label>("logInterval", 100);
-    if (!(maxCo > 0) || logInterval < 1)
-    {
-        FatalIOErrorInFunction(controls)
-            << "maxCo must be positive and logInterval at least 1"
-            << exit(FatalIOError);
-    }
-
-    if (maxCo > 1)
-    {
-        WarningInFunction
-            << "maxCo " << maxCo << " > 1: the explicit central-difference"
-            << " scheme is unstable above Courant number 1" << nl << endl;
-    }
+    timeStepControl timeStep(runTime);
 
     // Forces and stable step of the initial state; the initial state goes
     // to the ParaView series
     model.evaluate();
     model.write(runTime.timeIndex() == 0);
-
-    //- Stop if a fixed time step exceeds the stable one
-    auto checkFixedTimeStep = [&](const scalar stable)
-    {
-        if (runTime.deltaTValue() > maxCo*stable*(1 + 1e-12))
-        {
-            FatalIOErrorInFunction(controls)
-                << "deltaT " << runTime.deltaTValue()
-                << " exceeds the stable time step: Courant number "
-                << runTime.deltaTValue()/stable << " > maxCo " << maxCo
-                << " (stable deltaT at Courant number 1: " << stable << ")."
-                << nl << "    Reduce deltaT below " << maxCo*stable
-                << " or set adjustTimeStep yes." << exit(FatalIOError);
-        }
-    };
-    if (!adjustTimeStep) checkFixedTimeStep(model.stableDeltaT());
+    timeStep.check(model.stableDeltaT());
 
     Info<< "Starting time loop" << nl << endl;
 
-    // With writeControl adjustableRunTime the steps land on the write
-    // times. OpenFOAM's own adjustment rounds the number of steps to the
-    // next write time to the nearest integer, which can stretch a step by
-    // up to 1.5 times: 6 % above maxCo was seen on the cylinder tutorials.
-    // Here the count is rounded up, so no step exceeds maxCo.
-    const bool landOnWriteTimes =
-        Time::writeControlNames.getOrDefault
-        (
-            "writeControl", controls, Time::writeControls::wcTimeStep
-        ) == Time::writeControls::wcAdjustableRunTime;
-    const scalar writeInterval =
-        landOnWriteTimes ? controls.get<scalar>("writeInterval") : GREAT;
-    const scalar startTime = runTime.startTime().value();
-    auto stepToWriteTime = [&](const scalar dt)
-    {
-        const scalar t = runTime.value() - startTime;
-        const scalar tol = 1e-9*writeInterval;
-        const scalar next =
-            (std::floor((t + tol)/writeInterval) + 1)*writeInterval;
-        const scalar toNext = next - t;
-        const scalar n = std::ceil(toNext/dt*(1 - 1e-12));
-        return toNext/std::max(n, scalar(1));
-    };
-
-    label step = 0;
     while (runTime.run())
     {
-        const scalar stable = model.stableDeltaT();
-        if (adjustTimeStep)
-        {
-            const scalar dt = min(maxCo*stable, maxDeltaT);
-            if (landOnWriteTimes)
-            {
-                runTime.setDeltaT(stepToWriteTime(dt), false);
-            }
-            else
-            {
-                runTime.setDeltaT(dt);
-            }
-        }
-        else
-        {
-            checkFixedTimeStep(stable);
-        }
-
+        timeStep.setDeltaT(model.stableDeltaT());
         ++runTime;
-        ++step;
 
         model.advance();
         model.evaluate();
         model.write();
 
-        if (step % logInterval == 0 || runTime.writeTime())
+        if (timeStep.logTime())
         {
             Info<< "Time = " << runTime.timeName() << nl
                 << "deltaT = " << runTime.deltaTValue()
-                << ", Courant number = " << runTime.deltaTValue()/stable
+                << ", Courant number = " << timeStep.courantNumber()
                 << ", step " << runTime.timeIndex() << nl;
             model.report(Info);
             Info<< nl << "ExecutionTime = " << runTime.elapsedCpuTime()

@@ -351,7 +351,8 @@ Foam::bodyElementCoupling::bodyElementCoupling
     const label nNodes,
     const label nBodies,
     std::vector<label> nodes,
-    std::vector<label> bodies
+    std::vector<label> bodies,
+    const scalar contactDistance
 )
 :
     node_(std::move(nodes)),
@@ -360,7 +361,8 @@ Foam::bodyElementCoupling::bodyElementCoupling
     solidNode_(nNodes, false),
     onAttachedElement_(nNodes, false),
     force_(2*nBodies, 0),
-    moment_(nBodies, 0)
+    moment_(nBodies, 0),
+    contactDistance_(contactDistance)
 {
     for (const label n : node_) attached_[n] = true;
 }
@@ -586,6 +588,51 @@ void Foam::bodyElementCoupling::project
         bodies[body_[k]].signedDistance(x[2*n], x[2*n + 1], closest, normal);
         elements.setPosition(n, closest.x(), closest.y());
     }
+}
+
+
+// * * * * * * * * * * * * * * * * * * Hooks * * * * * * * * * * * * * * * * //
+
+void Foam::bodyElementCoupling::beforeElementAdvance(couplingStep& s)
+{
+    constrain(*s.elements, s.bodies);
+}
+
+
+void Foam::bodyElementCoupling::afterElementAdvance(couplingStep& s)
+{
+    gatherForces(*s.elements, s.bodies);
+}
+
+
+void Foam::bodyElementCoupling::afterBodyAdvance(couplingStep& s)
+{
+    project(*s.elements, s.bodies);
+}
+
+
+void Foam::bodyElementCoupling::afterConversion(couplingStep& s)
+{
+    update(*s.elements);
+}
+
+
+void Foam::bodyElementCoupling::beforeElementEvaluate(couplingStep& s)
+{
+    attachNear(*s.elements, s.bodies, contactDistance_);
+}
+
+
+void Foam::bodyElementCoupling::addBodyLoad
+(
+    const label b,
+    scalar F[2],
+    scalar& M
+) const
+{
+    F[0] += force_[2*b];
+    F[1] += force_[2*b + 1];
+    M += moment_[b];
 }
 
 

@@ -1,4 +1,5 @@
 #include "bodyParticleCoupling.H"
+#include "sphFluid.H"
 
 // * * * * * * * * * * * * * * * * Constructors  * * * * * * * * * * * * * * //
 
@@ -85,6 +86,39 @@ void Foam::bodyParticleCoupling::applyForces
         moment_[b] +=
             (x[2*k] - c.x())*F[2*k + 1] - (x[2*k + 1] - c.y())*F[2*k];
     }
+}
+
+
+// * * * * * * * * * * * * * * * * * * Hooks * * * * * * * * * * * * * * * * //
+
+void Foam::bodyParticleCoupling::beforeParticleEvaluate(couplingStep& s)
+{
+    structureParticles& p = s.structure;
+    first_ = p.size();
+    appendParticles(s.bodies, s.lastDeltaT, p.x, p.v, p.a, p.m, p.h);
+}
+
+
+void Foam::bodyParticleCoupling::afterParticleEvaluate(couplingStep& s)
+{
+    applyForces
+    (
+        s.bodies, s.structure.x.data() + 2*first_,
+        s.particles->structureParticleForce().data() + 2*first_
+    );
+}
+
+
+void Foam::bodyParticleCoupling::addBodyLoad
+(
+    const label b,
+    scalar F[2],
+    scalar& M
+) const
+{
+    F[0] += force_[2*b];
+    F[1] += force_[2*b + 1];
+    M += moment_[b];
 }
 
 

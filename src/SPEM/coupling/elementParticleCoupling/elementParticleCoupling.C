@@ -227,7 +227,6 @@ void Foam::elementParticleCoupling::interfaceTraction
 )
 {
     std::vector<scalar>& f = elements.externalForce();
-    std::fill(f.begin(), f.end(), 0);
     if (segments_.empty()) return;
 
     const particleSet& ps = particles.particles();
@@ -294,6 +293,36 @@ void Foam::elementParticleCoupling::interfaceTraction
         f[2*Q] += 0.5*Fx;
         f[2*Q + 1] += 0.5*Fy;
     }
+}
+
+
+// * * * * * * * * * * * * * * * * * * Hooks * * * * * * * * * * * * * * * * //
+
+void Foam::elementParticleCoupling::afterConversion(couplingStep& s)
+{
+    update(s.mesh, *s.elements, s.patchTypes);
+}
+
+
+void Foam::elementParticleCoupling::beforeElementEvaluate(couplingStep& s)
+{
+    binParticles(*s.particles);
+    if (s.lastDeltaT > 0)
+    {
+        correctVelocities(*s.elements, *s.particles, s.lastDeltaT);
+    }
+}
+
+
+void Foam::elementParticleCoupling::beforeParticleEvaluate(couplingStep& s)
+{
+    setGhosts(*s.elements, *s.particles);
+}
+
+
+void Foam::elementParticleCoupling::afterParticleEvaluate(couplingStep& s)
+{
+    interfaceTraction(*s.elements, *s.particles);
 }
 
 

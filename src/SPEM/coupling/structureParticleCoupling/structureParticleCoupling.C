@@ -1,5 +1,6 @@
 #include "structureParticleCoupling.H"
 #include "elementModel.H"
+#include "sphFluid.H"
 
 #include <algorithm>
 #include <cmath>
@@ -311,6 +312,25 @@ void Foam::structureParticleCoupling::applyForces
         force_[0] += F[2*k];
         force_[1] += F[2*k + 1];
     }
+}
+
+
+// * * * * * * * * * * * * * * * * * * Hooks * * * * * * * * * * * * * * * * //
+
+void Foam::structureParticleCoupling::beforeParticleEvaluate(couplingStep& s)
+{
+    structureParticles& p = s.structure;
+    first_ = p.size();
+    appendParticles(*s.elements, s.lastDeltaT, p.x, p.v, p.a, p.m, p.h);
+}
+
+
+void Foam::structureParticleCoupling::afterParticleEvaluate(couplingStep& s)
+{
+    applyForces
+    (
+        *s.elements, s.particles->structureParticleForce().data() + 2*first_
+    );
 }
 
 

@@ -156,7 +156,8 @@ Foam::sphFluid::controls::read(const dictionary& schemesDict)
         {
             "smoothingLengthRatio", "gradientCorrection", "densityDiffusion",
             "shifting", "freeSurfaceThreshold", "wallLayers",
-            "momentumGradient", "initialRelaxation", "relaxationCoefficient"
+            "momentumGradient", "initialRelaxation", "relaxationCoefficient",
+            "lostParticleDistance"
         }
     );
     c.smoothingLengthRatio =
@@ -183,6 +184,11 @@ Foam::sphFluid::controls::read(const dictionary& schemesDict)
         d->getOrDefault<scalar>
         (
             "relaxationCoefficient", c.relaxationCoefficient
+        );
+    c.lostParticleDistance =
+        d->getOrDefault<scalar>
+        (
+            "lostParticleDistance", c.lostParticleDistance
         );
 
     auto bad = [&](const char* key, const char* what)
@@ -217,6 +223,10 @@ Foam::sphFluid::controls::read(const dictionary& schemesDict)
     if (!(c.relaxationCoefficient > 0 && c.relaxationCoefficient <= 0.2))
     {
         bad("relaxationCoefficient", "must lie in (0, 0.2] (typically 0.1)");
+    }
+    if (!(c.lostParticleDistance > 0 && c.lostParticleDistance <= 100))
+    {
+        bad("lostParticleDistance", "must lie in (0, 100] domain sizes (typically 3)");
     }
     return c;
 }

@@ -42,7 +42,7 @@ Foam::functionObjects::spemFunctionObject::elements() const
         FatalErrorInFunction
             << "Function object " << name() << " of type " << type()
             << " needs elements, but this case has no elements (method "
-            << spemModel::methodTypeNames[m.method()] << ')'
+            << m.methodName() << ')'
             << exit(FatalError);
     }
     return m.elements();
@@ -58,7 +58,7 @@ Foam::functionObjects::spemFunctionObject::particles() const
         FatalErrorInFunction
             << "Function object " << name() << " of type " << type()
             << " needs particles, but this case has none (method "
-            << spemModel::methodTypeNames[m.method()] << ')'
+            << m.methodName() << ')'
             << exit(FatalError);
     }
     return m.particles();

@@ -1,0 +1,406 @@
+#include "SPEM.H"
+#include "initialDensity.H"
+#include "sphKernel.H"
+#include "addToRunTimeSelectionTable.H"
+
+#include <algorithm>
+#include <cmath>
+
+// * * * * * * * * * * * * * * Static Data Members * * * * * * * * * * * * * //
+
+namespace Foam
+{
+namespace spemMethods
+{
+    defineTypeNameAndDebug(SPEM, 0);
+    addToRunTimeSelectionTable(spemMethod, SPEM, dictionary);
+}
+}
+
+
+// * * * * * * * * * * * * Protected Member Functions  * * * * * * * * * * * //
+
+void Foam::spemMethods::SPEM::collectCouplings()
+{
+    spemMethod::collectCouplings();
+    // Body nodes first (their contact before eq. 26), then the interface:
+    // eq. (25) before eq. (27) adds to the solids' external forces
+    std::vector<spemCoupling*> first;
+    if (bodyElements_) first.push_back(bodyElements_.get());
+    if (coupling_) first.push_back(coupling_.get());
+    couplings_.insert(couplings_.begin(), first.begin(), first.end());
+}
+
+
+void Foam::spemMethods::SPEM::createParticleHalf
+(
+    particleSet&& ps,
+    std::vector<scalar>&& rhoOld,
+    const weaklyCompressibleNewtonian& fluid,
+    const scalar spacing
+)
+{
+    spemMethod::createParticleHalf
+    (
+        std::move(ps), std::move(rhoOld), fluid, spacing
+    );
+    coupling_.reset
+    (
+        new elementParticleCoupling
+        (
+            case_.schemes,
+            sphFluid::controls::read(case_.schemes).smoothingLengthRatio
+        )
+    );
+    collectCouplings();
+}
+
+
+Foam::bodyElementCoupling::preparedMesh
+Foam::spemMethods::SPEM::fitElementsToBodies
+(
+    const PtrList<spemMaterial>& materials
+)
+{
+    triMesh& mesh = case_.mesh;
+    const label nTri = mesh.nTriangles();
+    const std::vector<label>& tri = mesh.triangles();
+    std::vector<bool> fluid(nTri, false), fixedNode(mesh.nPoints(), false);
+    scalar areaSum = 0;
+    label nFluid = 0;
+    for (label t = 0; t < nTri; ++t)
+    {
+        const label r = mesh.triangleRegion()[t];
+        if (!materials.set(r)) continue;    // void: nothing to hold
+        fluid[t] = materials[r].isFluid();
+        if (fluid[t])
+        {
+            areaSum += mesh.triangleArea(t);
+            ++nFluid;
+        }
+        else
+        {
+            // A solid's nodes stay where the mesh has them
+            for (label a = 0; a < 3; ++a) fixedNode[tri[3*t + a]] = true;
+        }
+    }
+    if (nFluid == 0 || !case_.bodies.anySliding())
+    {
+        // Only the water inside the bodies goes
+        bodyElementCoupling::preparedMesh inside;
+        inside.removed = trianglesInsideBodies();
+        return inside;
+    }
+
+    // Preset particle regions become particles at t = 0 as the mesh gives
+    // them: not fitted, their nodes stay (the water inside a body is taken
+    // out below)
+    std::vector<bool> preset(nTri, false);
+    const PtrList<presetParticleRegion> regions =
+        readPresetParticleRegions
+        (
+            case_.schemes.subOrEmptyDict("conversion"), mesh, &case_.bodies
+        );
+    const std::vector<scalar>& X = mesh.points();
+    for (label t = 0; t < nTri && !regions.empty(); ++t)
+    {
+        if (!fluid[t]) continue;
+        const label* n = &tri[3*t];
+        const scalar cx = (X[2*n[0]] + X[2*n[1]] + X[2*n[2]])/3;
+        const scalar cy = (X[2*n[0] + 1] + X[2*n[1] + 1] + X[2*n[2] + 1])/3;
+        for (const presetParticleRegion& r : regions)
+        {
+            if (r.contains(cx, cy))
+            {
+                preset[t] = true;
+                fluid[t] = false;
+                for (label a = 0; a < 3; ++a) fixedNode[n[a]] = true;
+                break;
+            }
+        }
+    }
+
+    // So do the nodes of walls and clamps; free-surface nodes may slide
+    const std::vector<label>& seg = mesh.segments();
+    for (label s = 0; s < mesh.nSegments(); ++s)
+    {
+        if (case_.patchTypes[mesh.segmentPatch()[s]] != patchType::freeSurface)
+        {
+            fixedNode[seg[2*s]] = fixedNode[seg[2*s + 1]] = true;
+        }
+    }
+
+    bodyContact_ = 0.25*std::sqrt(areaSum/nFluid);
+    bodyElementCoupling::preparedMesh fitted =
+        bodyElementCoupling::prepareMesh
+        (
+            mesh, case_.bodies, fluid, fixedNode, bodyContact_
+        );
+    for (const label t : trianglesInsideBodies())
+    {
+        if (preset[t]) fitted.removed.push_back(t);
+    }
+    if (!fitted.nodes.empty())
+    {
+        Info<< "    rigid bodies: " << fitted.nodes.size() << " element nodes"
+            << " moved onto their surfaces (at most " << fitted.maxMove
+            << " m)" << nl;
+    }
+    return fitted;
+}
+
+
+void Foam::spemMethods::SPEM::setupConversion()
+{
+    scalar maxArea;
+    const std::vector<bool> fluidTri = surveyFluidElements(maxArea);
+    if (!elementFluid_) return;
+
+    const scalar ratio =
+        sphFluid::controls::read(case_.schemes).smoothingLengthRatio;
+    bodyReach_ =
+        sphKernel::New(case_.schemes)->support()*ratio*fluidSpacing_;
+    conversion_.reset
+    (
+        new groupConversion
+        (
+            case_.schemes.subOrEmptyDict("conversion"), case_.mesh, fluidTri,
+            ratio*std::sqrt(maxArea), &case_.bodies
+        )
+    );
+    conversion_->describe(Info);
+    if (restartConversions()) return;
+
+    // The preset particle regions, not the triangles taken out already:
+    // those inside a rigid body at t = 0 (a preset region around a body
+    // holds some)
+    std::vector<label> preset = conversion_->presetTriangles(case_.mesh);
+    preset.erase
+    (
+        std::remove_if
+        (
+            preset.begin(), preset.end(),
+            [&](const label t) { return elements_->removed(t); }
+        ),
+        preset.end()
+    );
+    if (!preset.empty())
+    {
+        convert(preset);
+        Info<< "    preset particle regions: " << preset.size()
+            << " fluid elements became particles at t = 0" << nl;
+    }
+}
+
+
+bool Foam::spemMethods::SPEM::particlesNextTo
+(
+    const rigidBody& body,
+    const scalar d
+)
+{
+    nextToBody_.clear();
+    const boundBox box = body.boundingBox();
+    const particleSet& ps = particles_->particles();
+    const scalar* p = ps.positions().data();
+    for (label i = 0; i < ps.size(); ++i)
+    {
+        if (ps.kinds()[i] != particleSet::kind::fluid) continue;
+        const scalar px = p[2*i], py = p[2*i + 1];
+        if
+        (
+            px < box.min().x() - d || px > box.max().x() + d
+         || py < box.min().y() - d || py > box.max().y() + d
+         || body.signedDistance(px, py) >= d
+        )
+        {
+            continue;
+        }
+        nextToBody_.push_back(px);
+        nextToBody_.push_back(py);
+    }
+    return !nextToBody_.empty();
+}
+
+
+std::vector<Foam::label> Foam::spemMethods::SPEM::trianglesNearBodies()
+{
+    std::vector<label> near;
+    const rigidBodies& bodies = case_.bodies;
+    if (bodies.empty() || !elements_ || !elementFluid_) return near;
+
+    // fluidElements convert: elements with a node within the support of a
+    // particle next to the body, converted before they can touch it.
+    // slide: elements not on the body with a node within that support of
+    // the body and of a particle next to it (a spacing from it)
+    const elementModel& em = *elements_;
+    const std::vector<scalar>& x = em.positions();
+    const std::vector<label>& nodes = em.elementNodes();
+    const scalar reach = bodyReach_;
+    forAll(bodies, b)
+    {
+        const rigidBody& body = bodies[b];
+        const bool slide =
+            body.elementsContact() == rigidBody::elementContact::slide;
+        const boundBox box = body.boundingBox();
+        if (slide)
+        {
+            if (!particles_ || !bodyElements_) continue;
+            if (!particlesNextTo(body, fluidSpacing_)) continue;
+        }
+        const auto nearParticle = [&](const scalar px, const scalar py)
+        {
+            for (size_t k = 0; k < nextToBody_.size()/2; ++k)
+            {
+                if
+                (
+                    sqr(px - nextToBody_[2*k]) + sqr(py - nextToBody_[2*k + 1])
+                  < sqr(reach)
+                )
+                {
+                    return true;
+                }
+            }
+            return false;
+        };
+        for (label r = 0; r < em.regions().size(); ++r)
+        {
+            if (!em.hasMaterial(r) || !em.material(r).isFluid()) continue;
+            const elementModel::region& reg = em.regions()[r];
+            for (label el = reg.elemBegin; el < reg.elemEnd; ++el)
+            {
+                const label* en = &nodes[3*el];
+                if
+                (
+                    slide
+                 && (
+                        bodyElements_->attached(en[0])
+                     || bodyElements_->attached(en[1])
+                     || bodyElements_->attached(en[2])
+                    )
+                )
+                {
+                    continue;
+                }
+                for (label a = 0; a < 3; ++a)
+                {
+                    const scalar px = x[2*en[a]];
+                    const scalar py = x[2*en[a] + 1];
+                    if
+                    (
+                        px < box.min().x() - reach || px > box.max().x() + reach
+                     || py < box.min().y() - reach || py > box.max().y() + reach
+                     || body.signedDistance(px, py) >= reach
+                    )
+                    {
+                        continue;
+                    }
+                    if (!slide || nearParticle(px, py))
+                    {
+                        near.push_back(em.elementTriangle()[el]);
+                        break;
+                    }
+                }
+            }
+        }
+    }
+    return near;
+}
+
+
+// * * * * * * * * * * * * * * * * Constructors  * * * * * * * * * * * * * * //
+
+Foam::spemMethods::SPEM::SPEM
+(
+    const spemCase& c,
+    PtrList<spemMaterial>& materials
+)
+:
+    spemMethod(c),
+    bodyReach_(0),
+    bodyContact_(0)
+{
+    // Fluid elements fitted to the rigid bodies: before anything takes
+    // masses or geometry from the mesh
+    bodyElementCoupling::preparedMesh bodyMesh;
+    if (!c.bodies.empty()) bodyMesh = fitElementsToBodies(materials);
+    // The state at t = 0 (a restart then overwrites what it stores)
+    const std::vector<scalar> density =
+        initialDensity
+        (
+            c.mesh, c.patchTypes, materials, c.properties.subDict("regions"),
+            c.g[0], c.g[1]
+        );
+    refuseInitialRelaxation();
+    createElementHalf(materials, density);
+
+    // The water a body displaces at t = 0 is not there
+    if (!bodyMesh.removed.empty())
+    {
+        elements_->removeTriangles(c.mesh, bodyMesh.removed);
+        Info<< "    rigid bodies: " << bodyMesh.removed.size()
+            << " fluid elements inside them removed" << nl;
+    }
+    if (bodyContact_ > 0)
+    {
+        // Restart: the nodes attached then
+        c.restart.readBodyNodes(bodyMesh.nodes, bodyMesh.bodies);
+        bodyElements_.reset
+        (
+            new bodyElementCoupling
+            (
+                c.mesh.nPoints(), c.bodies.size(),
+                std::move(bodyMesh.nodes), std::move(bodyMesh.bodies),
+                bodyContact_
+            )
+        );
+        collectCouplings();
+    }
+    setupConversion();
+    if (bodyElements_)
+    {
+        // Without the nodes a restart's conversions left without elements
+        bodyElements_->update(*elements_);
+        Info<< "    rigid bodies: " << bodyElements_->size()
+            << " element nodes slide on them" << nl;
+    }
+}
+
+
+// * * * * * * * * * * * * * * * Member Functions  * * * * * * * * * * * * * //
+
+bool Foam::spemMethods::SPEM::evaluate()
+{
+    if (conversion_)
+    {
+        const std::vector<label> triangles =
+            conversion_->trianglesToConvert(*elements_, trianglesNearBodies());
+        if (!triangles.empty()) convert(triangles);
+    }
+    return spemMethod::evaluate();
+}
+
+
+Foam::restartState::content Foam::spemMethods::SPEM::state() const
+{
+    restartState::content c = spemMethod::state();
+    c.bodyNodes = bodyElements_.get();
+    return c;
+}
+
+
+void Foam::spemMethods::SPEM::reportInterface(Ostream& os) const
+{
+    if (coupling_)
+    {
+        os  << ", ghost particles = " << particles_->nGhost()
+            << ", interface segments = " << coupling_->nInterfaceSegments();
+    }
+    if (bodyElements_)
+    {
+        os  << ", element nodes on bodies = " << bodyElements_->size();
+    }
+}
+
+
+// ************************************************************************* //

@@ -1,0 +1,514 @@
+#include "spemMethod.H"
+#include "weaklyCompressibleNewtonian.H"
+#include "wallParticles.H"
+#include "sphKernel.H"
+#include "elementToParticle.H"
+#include "elementParticleCoupling.H"
+
+#include <cmath>
+
+// * * * * * * * * * * * * * * Static Data Members * * * * * * * * * * * * * //
+
+namespace Foam
+{
+    defineTypeNameAndDebug(spemMethod, 0);
+    defineRunTimeSelectionTable(spemMethod, dictionary);
+}
+
+
+// * * * * * * * * * * * * Protected Member Functions  * * * * * * * * * * * //
+
+void Foam::spemMethod::collectCouplings()
+{
+    couplings_.clear();
+    // Structure before bodies: the order of their particles in the step
+    if (structureCoupling_) couplings_.push_back(structureCoupling_.get());
+    if (bodyCoupling_) couplings_.push_back(bodyCoupling_.get());
+}
+
+
+void Foam::spemMethod::callHooks(void (spemCoupling::*hook)(couplingStep&))
+{
+    couplingStep s
+    {
+        case_.mesh, case_.patchTypes, elements_.get(), particles_.get(),
+        case_.bodies, lastDeltaT_, structure_
+    };
+    for (spemCoupling* c : couplings_) (c->*hook)(s);
+}
+
+
+void Foam::spemMethod::createElementHalf
+(
+    PtrList<spemMaterial>& materials,
+    const std::vector<scalar>& density
+)
+{
+    elements_.reset
+    (
+        new elementModel(case_.mesh, std::move(materials), density)
+    );
+    std::vector<elementModel::constraint> c;
+    std::vector<scalar> normal;
+    nodeConstraints
+    (
+        case_.mesh, case_.patchTypes, case_.slipCornerAngle, c, normal
+    );
+    elements_->setConstraints(std::move(c), std::move(normal));
+    elements_->setGravity(case_.g[0], case_.g[1]);
+    elements_->setMassDamping(case_.massDamping);
+    case_.restart.readElements(*elements_);
+}
+
+
+void Foam::spemMethod::createParticleHalf
+(
+    particleSet&& ps,
+    std::vector<scalar>&& rhoOld,
+    const weaklyCompressibleNewtonian& fluid,
+    const scalar spacing
+)
+{
+    const dictionary& schemes = case_.schemes;
+    const triMesh& mesh = case_.mesh;
+    const sphFluid::controls ctrl = sphFluid::controls::read(schemes);
+
+    // Walls: dummy particles at the mean spacing of the fluid particles,
+    // enough layers to fill the kernel support
+    const scalar h = ctrl.smoothingLengthRatio*spacing;
+    const scalar kappa = sphKernel::New(schemes)->support();
+    const label layers =
+        ctrl.wallLayers > 0
+      ? ctrl.wallLayers
+      : label(std::ceil(kappa*ctrl.smoothingLengthRatio - 1e-9));
+    const label nWall =
+        appendWallParticles
+        (
+            mesh, case_.patchTypes, spacing, layers, fluid.rho(), h, ps
+        );
+
+    // Lost particles: beyond the mesh's bounding box enlarged by
+    // lostParticleDistance times its size on every side (see sphFluid)
+    scalar boxMin[2] = {GREAT, GREAT}, boxMax[2] = {-GREAT, -GREAT};
+    const std::vector<scalar>& x = mesh.points();
+    for (label i = 0; i < mesh.nPoints(); ++i)
+    {
+        for (int k = 0; k < 2; ++k)
+        {
+            boxMin[k] = min(boxMin[k], x[2*i + k]);
+            boxMax[k] = max(boxMax[k], x[2*i + k]);
+        }
+    }
+    for (int k = 0; k < 2; ++k)
+    {
+        const scalar size = boxMax[k] - boxMin[k];
+        boxMin[k] -= ctrl.lostParticleDistance*size;
+        boxMax[k] += ctrl.lostParticleDistance*size;
+    }
+
+    particles_.reset
+    (
+        new sphFluid
+        (
+            schemes, std::move(ps), fluid.rho(), fluid.c(),
+            fluid.rho()*fluid.kinematicViscosity(), case_.g[0], case_.g[1],
+            boxMin, boxMax
+        )
+    );
+    particles_->setMassDamping(case_.massDamping);
+
+    // The rigid bodies seen by the particles
+    if (!case_.bodies.empty())
+    {
+        bodyCoupling_.reset
+        (
+            new bodyParticleCoupling
+            (
+                case_.bodies, spacing, layers, fluid.rho(), h
+            )
+        );
+        Info<< "    rigid bodies: " << bodyCoupling_->size()
+            << " dummy particles" << nl;
+        case_.restart.readAcceleration
+        (
+            "bodyParticle", bodyCoupling_->acceleration()
+        );
+    }
+
+    // The solids seen by the particles (eq. 27)
+    if (elements_)
+    {
+        structureCoupling_.reset
+        (
+            new structureParticleCoupling
+            (
+                mesh, *elements_, case_.patchTypes, spacing, layers,
+                fluid.rho(), h
+            )
+        );
+        if (structureCoupling_->size() == 0)
+        {
+            structureCoupling_.reset();
+        }
+        else
+        {
+            Info<< "    structure-particle coupling: "
+                << structureCoupling_->size()
+                << " virtual particles in the solid regions" << nl;
+            case_.restart.readAcceleration
+            (
+                "virtualParticle", structureCoupling_->acceleration()
+            );
+        }
+    }
+    collectCouplings();
+
+    if (!rhoOld.empty())
+    {
+        // Restart: the fluid particles come first; walls start at rho0
+        rhoOld.resize(particles_->particles().size(), fluid.rho());
+        particles_->setOldDensity(rhoOld);
+    }
+
+    const sphFluid::controls& c = particles_->schemeControls();
+    Info<< "Particle half: " << nWall << " wall particles in " << layers
+        << " layers" << nl
+        << "    spacing " << spacing << " m, h " << h << " m, kernel "
+        << particles_->kernel().type() << nl
+        << "    gradientCorrection "
+        << sphFluid::gradientCorrectionTypeNames[c.gradientCorrection]
+        << ", densityDiffusion " << c.densityDiffusion
+        << ", shifting " << c.shifting
+        << ", freeSurfaceThreshold " << c.freeSurfaceThreshold << nl;
+}
+
+
+std::vector<bool> Foam::spemMethod::surveyFluidElements(scalar& maxArea)
+{
+    const triMesh& mesh = case_.mesh;
+    const elementModel& em = *elements_;
+    const label nTri = mesh.nTriangles();
+    std::vector<bool> fluidTri(nTri, false);
+    scalar areaSum = 0;
+    label nFluid = 0;
+    maxArea = 0;
+    for (label t = 0; t < nTri; ++t)
+    {
+        const label r = mesh.triangleRegion()[t];
+        if (!em.hasMaterial(r)) continue;   // void
+        const spemMaterial& mat = em.material(r);
+        if (!mat.isFluid()) continue;
+        const auto* f = dynamic_cast<const weaklyCompressibleNewtonian*>(&mat);
+        if (!f)
+        {
+            FatalErrorInFunction
+                << "Fluid region " << mesh.regionNames()[r] << " ("
+                << mat.type() << ") cannot become particles" << exit(FatalError);
+        }
+        const weaklyCompressibleNewtonian* g = elementFluid_;
+        if
+        (
+            g
+         && (
+                f->rho() != g->rho() || f->c() != g->c()
+             || f->kinematicViscosity() != g->kinematicViscosity()
+            )
+        )
+        {
+            FatalIOErrorInFunction(case_.properties)
+                << "Fluid regions with different rho, c or mu: the particles"
+                << " of method SPEM model one fluid" << exit(FatalIOError);
+        }
+        elementFluid_ = f;
+        fluidTri[t] = true;
+        const scalar A = mesh.triangleArea(t);
+        areaSum += A;
+        maxArea = max(maxArea, A);
+        ++nFluid;
+    }
+    if (nFluid > 0) fluidSpacing_ = std::sqrt(areaSum/nFluid);
+    return fluidTri;
+}
+
+
+void Foam::spemMethod::convert(const std::vector<label>& triangles)
+{
+    const scalar ratio =
+        sphFluid::controls::read(case_.schemes).smoothingLengthRatio;
+
+    particleSet ps;
+    convertElements(case_.mesh, triangles, ratio, *elements_, ps);
+    convertedTriangles_.insert
+    (
+        convertedTriangles_.end(), triangles.begin(), triangles.end()
+    );
+    if (!particles_)
+    {
+        createParticleHalf
+        (
+            particleSet(), std::vector<scalar>(), *elementFluid_,
+            fluidSpacing_
+        );
+    }
+    particles_->appendFluid(ps);
+    callHooks(&spemCoupling::afterConversion);
+
+    Info<< "Conversion at time " << case_.runTime.timeName() << ": "
+        << triangles.size() << " fluid elements became particles; "
+        << elements_->nElements() << " elements, " << particles_->nFluid()
+        << " particles";
+    if (coupling())
+    {
+        Info<< ", " << coupling()->nInterfaceSegments()
+            << " interface segments";
+    }
+    Info<< nl;
+}
+
+
+bool Foam::spemMethod::restartConversions()
+{
+    if (!case_.restart.readConvertedTriangles(convertedTriangles_))
+    {
+        return false;
+    }
+    if (convertedTriangles_.empty()) return true;
+    elements_->removeTriangles(case_.mesh, convertedTriangles_);
+    particleSet ps;
+    std::vector<scalar> rhoOld;
+    if (!case_.restart.readParticles(ps, rhoOld))
+    {
+        FatalErrorInFunction
+            << "convertedTriangles in " << case_.runTime.timePath()/"spem"
+            << " lists converted elements but there is no particle state"
+            << exit(FatalError);
+    }
+    createParticleHalf
+    (
+        std::move(ps), std::move(rhoOld), *elementFluid_, fluidSpacing_
+    );
+    callHooks(&spemCoupling::afterConversion);
+    return true;
+}
+
+
+std::vector<Foam::label> Foam::spemMethod::trianglesInsideBodies() const
+{
+    std::vector<label> inside;
+    const rigidBodies& bodies = case_.bodies;
+    const triMesh& mesh = case_.mesh;
+    if (bodies.empty()) return inside;
+    const std::vector<scalar>& X = mesh.points();
+    const std::vector<label>& tri = mesh.triangles();
+    // The fluid regions (the one fluid model), from the dictionary: the
+    // materials may already belong to the element model
+    const dictionary& regions = case_.properties.subDict("regions");
+    std::vector<bool> fluidRegion(mesh.nRegions(), false);
+    forAll(mesh.regionNames(), r)
+    {
+        const dictionary* rd = regions.findDict(mesh.regionNames()[r]);
+        fluidRegion[r] =
+            rd && rd->get<word>("model") == "weaklyCompressibleNewtonian";
+    }
+    for (label t = 0; t < mesh.nTriangles(); ++t)
+    {
+        if (!fluidRegion[mesh.triangleRegion()[t]]) continue;
+        const label* n = &tri[3*t];
+        const scalar cx = (X[2*n[0]] + X[2*n[1]] + X[2*n[2]])/3;
+        const scalar cy = (X[2*n[0] + 1] + X[2*n[1] + 1] + X[2*n[2] + 1])/3;
+        forAll(bodies, b)
+        {
+            if (bodies[b].contains(cx, cy))
+            {
+                inside.push_back(t);
+                break;
+            }
+        }
+    }
+    return inside;
+}
+
+
+bool Foam::spemMethod::anySolid(const PtrList<spemMaterial>& materials)
+{
+    forAll(materials, r)
+    {
+        if (materials.set(r) && !materials[r].isFluid()) return true;
+    }
+    return false;
+}
+
+
+void Foam::spemMethod::refuseInitialRelaxation() const
+{
+    // The relaxation sees fluid and wall particles only: neither elements
+    // nor the rigid bodies' dummy particles, which are placed after it
+    if (sphFluid::controls::read(case_.schemes).initialRelaxation > 0)
+    {
+        FatalIOErrorInFunction(case_.schemes)
+            << "sph/initialRelaxation relaxes the particles of method SPH"
+            << " without solids or rigid bodies; with elements (method SPEM,"
+            << " solid regions) or constant/rigidBodyProperties set it to 0"
+            << exit(FatalIOError);
+    }
+}
+
+
+bool Foam::spemMethod::fail(const std::string& why)
+{
+    failure_ = why;
+    return false;
+}
+
+
+// * * * * * * * * * * * * * * * * Constructors  * * * * * * * * * * * * * * //
+
+Foam::spemMethod::spemMethod(const spemCase& c)
+:
+    case_(c),
+    lastDeltaT_(0),
+    elementFluid_(nullptr),
+    fluidSpacing_(0)
+{}
+
+
+Foam::spemMethod::~spemMethod() = default;
+
+
+// * * * * * * * * * * * * * * * Member Functions  * * * * * * * * * * * * * //
+
+bool Foam::spemMethod::advance(const scalar dt)
+{
+    callHooks(&spemCoupling::beforeElementAdvance);
+    if (elements_ && !elements_->advance(dt))
+    {
+        return fail(elements_->failure());
+    }
+    callHooks(&spemCoupling::afterElementAdvance);
+    if (particles_ && !particles_->advance(dt))
+    {
+        return fail(particles_->failure());
+    }
+    // The bodies under the fluid's force of the last evaluation, from
+    // t^n = t^{n+1} - dt (the Time is already at the new time)
+    rigidBodies& bodies = case_.bodies;
+    forAll(bodies, b)
+    {
+        scalar F[2], M;
+        bodyLoad(b, F, M);
+        bodies[b].advance
+        (
+            case_.runTime.value() - dt, dt, F[0], F[1], M,
+            case_.g[0], case_.g[1]
+        );
+    }
+    callHooks(&spemCoupling::afterBodyAdvance);
+    lastDeltaT_ = dt;
+    return true;
+}
+
+
+bool Foam::spemMethod::evaluate()
+{
+    callHooks(&spemCoupling::beforeElementEvaluate);
+    if (elements_ && !elements_->evaluate())
+    {
+        return fail(elements_->failure());
+    }
+    if (!particles_) return true;
+
+    structure_.clear();
+    callHooks(&spemCoupling::beforeParticleEvaluate);
+    if (structure_.size() > 0)
+    {
+        particles_->setStructureParticles
+        (
+            structure_.size(), structure_.x.data(), structure_.v.data(),
+            structure_.a.data(), structure_.m.data(), structure_.h.data()
+        );
+    }
+    if (!particles_->evaluate()) return fail(particles_->failure());
+
+    // The particles' forces on the elements are the external forces of
+    // this evaluation: eq. (25) on the fluid elements' interface, eq. (27)
+    // on the solids
+    if (elements_) elements_->clearExternalForce();
+    callHooks(&spemCoupling::afterParticleEvaluate);
+    return true;
+}
+
+
+void Foam::spemMethod::revertToLastGood()
+{
+    if (elements_) elements_->revert();
+    if (particles_) particles_->revert();
+    // Stresses and pressures of the good state for the output (it
+    // evaluated before)
+    if (elements_) elements_->evaluate();
+    if (particles_) particles_->evaluate();
+}
+
+
+Foam::scalar Foam::spemMethod::stableDeltaT() const
+{
+    scalar dt = GREAT;
+    if (elements_) dt = min(dt, elements_->stableDeltaT());
+    if (particles_) dt = min(dt, particles_->stableDeltaT());
+    return dt;
+}
+
+
+void Foam::spemMethod::bodyLoad(const label b, scalar F[2], scalar& M) const
+{
+    F[0] = F[1] = M = 0;
+    for (const spemCoupling* c : couplings_) c->addBodyLoad(b, F, M);
+}
+
+
+Foam::restartState::content Foam::spemMethod::state() const
+{
+    restartState::content c;
+    c.elements = elements_.get();
+    c.particles = particles_.get();
+    c.bodies = &case_.bodies;
+    c.convertedTriangles = &convertedTriangles_;
+    if (structureCoupling_)
+    {
+        c.virtualParticles = &structureCoupling_->acceleration();
+    }
+    if (bodyCoupling_) c.bodyParticles = &bodyCoupling_->acceleration();
+    return c;
+}
+
+
+void Foam::spemMethod::report(Ostream& os) const
+{
+    os  << "elements = " << (elements_ ? elements_->nElements() : 0)
+        << ", nodes = " << (elements_ ? elements_->nNodes() : 0)
+        << ", particles = " << (particles_ ? particles_->nFluid() : 0);
+    if (particles_)
+    {
+        const scalar* f = particles_->wallForce();
+        os  << ", wall particles = " << particles_->nWall()
+            << ", force on walls = (" << f[0] << ' ' << f[1] << ')';
+    }
+    reportInterface(os);
+    if (structureCoupling_)
+    {
+        const scalar* f = structureCoupling_->force();
+        os  << ", force on solids = (" << f[0] << ' ' << f[1] << ')';
+    }
+    forAll(case_.bodies, b)
+    {
+        const rigidBody& body = case_.bodies[b];
+        scalar f[2], m;
+        bodyLoad(b, f, m);
+        os  << ", body " << body.name() << " at (" << body.position().x()
+            << ' ' << body.position().y() << ") velocity ("
+            << body.velocity().x() << ' ' << body.velocity().y()
+            << ") force (" << f[0] << ' ' << f[1] << ')';
+    }
+}
+
+
+// ************************************************************************* //
