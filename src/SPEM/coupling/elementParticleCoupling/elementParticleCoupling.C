@@ -233,19 +233,12 @@ void Foam::elementParticleCoupling::interfaceTraction
     const std::vector<scalar>& x = elements.positions();
 
     // The particles' pressure at the nodes. The particles lie on one side
-    // of the interface, and their Shepard mean alone is the pressure at
-    // their weighted centroid, about h/2 inside the particle region:
-    // measured on a hydrostatic column with its top 0.15 m as particles
-    // (nx 20), the elements' pressure sat 3 % of rho g H below
-    // rho g (H - y) everywhere. Each particle's pressure is carried to the
-    // node with the hydrostatic gradient, as for the wall particles (Adami
-    // et al. 2012),
-    //     p_n = sum_j [p_j + rho_j g . (x_n - x_j)] V_j W_nj / sum_j V_j W_nj,
-    // exact at rest. Tried and dropped: a linear moving-least-squares
-    // extrapolation (exact for any linear field, but it amplified the
-    // pressure noise of a breaking front: particles shot out at 19 m/s on
-    // the damBreakElasticPlate tutorial at 0.12 s), and the ghosts in the
-    // sum (a compressed interface element was held by its own pressure).
+    // of the interface, and their Shepard mean alone is the pressure about
+    // h/2 inside the particle region. Each particle's pressure is carried
+    // to the node with the hydrostatic gradient, as for the wall particles
+    // (Adami et al. 2012), exact at rest:
+    //     p_n = sum_j [p_j + rho_j g . (x_n - x_j)] V_j W_nj / sum_j V_j W_nj
+    // (measurements and alternatives dropped: src/SPEM/sph/README.md)
     const scalar gx = particles.gx(), gy = particles.gy();
     particles.kernel().visit
     (
