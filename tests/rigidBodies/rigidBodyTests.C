@@ -915,6 +915,38 @@ TEST(RigidBodies, readsEveryBodyInOrderAndRejectsBadEntries)
 }
 
 
+TEST(RigidBodies, elementContactDistanceDefaultsToAQuarterSpacingAndIsChecked)
+{
+    EXPECT_EQ(rigidBodies(dictionaryFrom("")).elementContactDistance(), 0.25);
+    EXPECT_EQ
+    (
+        rigidBodies
+        (
+            dictionaryFrom("elementContactDistance 0.1; bodies {}")
+        ).elementContactDistance(),
+        0.1
+    );
+    for (const char* bad : {"0", "-0.1", "0.6"})
+    {
+        SCOPED_TRACE(bad);
+        fatalIOErrorOf
+        (
+            [&]
+            {
+                rigidBodies
+                (
+                    dictionaryFrom
+                    (
+                        std::string("elementContactDistance ") + bad + ';'
+                    )
+                );
+            },
+            {"elementContactDistance"}
+        );
+    }
+}
+
+
 TEST(RigidBodies, readsConstantRigidBodyPropertiesOfACase)
 {
     namespace fs = std::filesystem;

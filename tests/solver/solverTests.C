@@ -1814,7 +1814,9 @@ TEST_F(Solver, outOfRangeSphValueStops)
             {"initialRelaxation", "-1"},
             {"initialRelaxation", "100001"},
             {"relaxationCoefficient", "0"},
-            {"relaxationCoefficient", "0.3"}
+            {"relaxationCoefficient", "0.3"},
+            {"lostParticleDistance", "0"},
+            {"lostParticleDistance", "101"}
         }
     )
     {

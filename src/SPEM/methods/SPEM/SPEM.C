@@ -56,6 +56,46 @@ void Foam::spemMethods::SPEM::createParticleHalf
 }
 
 
+std::vector<bool> Foam::spemMethods::SPEM::holdPresetTriangles
+(
+    std::vector<bool>& fluid,
+    std::vector<bool>& fixedNode
+) const
+{
+    // Preset particle regions become particles at t = 0 as the mesh gives
+    // them: not fitted, their nodes stay (the water inside a body is taken
+    // out after the fitting)
+    const triMesh& mesh = case_.mesh;
+    const label nTri = mesh.nTriangles();
+    const std::vector<label>& tri = mesh.triangles();
+    std::vector<bool> preset(nTri, false);
+    const PtrList<presetParticleRegion> regions =
+        readPresetParticleRegions
+        (
+            case_.schemes.subOrEmptyDict("conversion"), mesh, &case_.bodies
+        );
+    const std::vector<scalar>& X = mesh.points();
+    for (label t = 0; t < nTri && !regions.empty(); ++t)
+    {
+        if (!fluid[t]) continue;
+        const label* n = &tri[3*t];
+        const scalar cx = (X[2*n[0]] + X[2*n[1]] + X[2*n[2]])/3;
+        const scalar cy = (X[2*n[0] + 1] + X[2*n[1] + 1] + X[2*n[2] + 1])/3;
+        for (const presetParticleRegion& r : regions)
+        {
+            if (r.contains(cx, cy))
+            {
+                preset[t] = true;
+                fluid[t] = false;
+                for (label a = 0; a < 3; ++a) fixedNode[n[a]] = true;
+                break;
+            }
+        }
+    }
+    return preset;
+}
+
+
 Foam::bodyElementCoupling::preparedMesh
 Foam::spemMethods::SPEM::fitElementsToBodies
 (
@@ -92,33 +132,7 @@ Foam::spemMethods::SPEM::fitElementsToBodies
         return inside;
     }
 
-    // Preset particle regions become particles at t = 0 as the mesh gives
-    // them: not fitted, their nodes stay (the water inside a body is taken
-    // out below)
-    std::vector<bool> preset(nTri, false);
-    const PtrList<presetParticleRegion> regions =
-        readPresetParticleRegions
-        (
-            case_.schemes.subOrEmptyDict("conversion"), mesh, &case_.bodies
-        );
-    const std::vector<scalar>& X = mesh.points();
-    for (label t = 0; t < nTri && !regions.empty(); ++t)
-    {
-        if (!fluid[t]) continue;
-        const label* n = &tri[3*t];
-        const scalar cx = (X[2*n[0]] + X[2*n[1]] + X[2*n[2]])/3;
-        const scalar cy = (X[2*n[0] + 1] + X[2*n[1] + 1] + X[2*n[2] + 1])/3;
-        for (const presetParticleRegion& r : regions)
-        {
-            if (r.contains(cx, cy))
-            {
-                preset[t] = true;
-                fluid[t] = false;
-                for (label a = 0; a < 3; ++a) fixedNode[n[a]] = true;
-                break;
-            }
-        }
-    }
+    const std::vector<bool> preset = holdPresetTriangles(fluid, fixedNode);
 
     // So do the nodes of walls and clamps; free-surface nodes may slide
     const std::vector<label>& seg = mesh.segments();
@@ -130,7 +144,8 @@ Foam::spemMethods::SPEM::fitElementsToBodies
         }
     }
 
-    bodyContact_ = 0.25*std::sqrt(areaSum/nFluid);
+    bodyContact_ =
+        case_.bodies.elementContactDistance()*std::sqrt(areaSum/nFluid);
     bodyElementCoupling::preparedMesh fitted =
         bodyElementCoupling::prepareMesh
         (

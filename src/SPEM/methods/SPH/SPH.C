@@ -21,16 +21,16 @@ namespace spemMethods
 
 // * * * * * * * * * * * * * Private Member Functions  * * * * * * * * * * * //
 
-void Foam::spemMethods::SPH::buildParticles
+const Foam::weaklyCompressibleNewtonian&
+Foam::spemMethods::SPH::fluidTriangles
 (
     const PtrList<spemMaterial>& materials,
-    const std::vector<scalar>& density
-)
+    std::vector<label>& fluidElements
+) const
 {
     const triMesh& mesh = case_.mesh;
 
     // The fluid regions: one fluid for the particles
-    std::vector<label> fluidElements;
     const weaklyCompressibleNewtonian* fluid = nullptr;
     forAll(materials, r)
     {
@@ -78,6 +78,20 @@ void Foam::spemMethods::SPH::buildParticles
             << "method SPH needs at least one fluid region"
             << exit(FatalIOError);
     }
+    return *fluid;
+}
+
+
+void Foam::spemMethods::SPH::buildParticles
+(
+    const PtrList<spemMaterial>& materials,
+    const std::vector<scalar>& density
+)
+{
+    const triMesh& mesh = case_.mesh;
+    std::vector<label> fluidElements;
+    const weaklyCompressibleNewtonian& fluid =
+        fluidTriangles(materials, fluidElements);
 
     // Eqs. (17-18): every fluid element becomes a particle at t = 0
     std::vector<scalar> elementMass(mesh.nTriangles(), 0);
@@ -113,7 +127,7 @@ void Foam::spemMethods::SPH::buildParticles
     const label nFluid = ps.size();
     createParticleHalf
     (
-        std::move(ps), std::move(rhoOld), *fluid,
+        std::move(ps), std::move(rhoOld), fluid,
         std::sqrt(areaSum/fluidElements.size())
     );
     Info<< "Particles (method SPH): " << nFluid << " fluid particles from "

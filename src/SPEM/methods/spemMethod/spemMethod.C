@@ -105,7 +105,6 @@ void Foam::spemMethod::createParticleHalf
         boxMin[k] -= ctrl.lostParticleDistance*size;
         boxMax[k] += ctrl.lostParticleDistance*size;
     }
-
     particles_.reset
     (
         new sphFluid
@@ -116,52 +115,7 @@ void Foam::spemMethod::createParticleHalf
         )
     );
     particles_->setMassDamping(case_.massDamping);
-
-    // The rigid bodies seen by the particles
-    if (!case_.bodies.empty())
-    {
-        bodyCoupling_.reset
-        (
-            new bodyParticleCoupling
-            (
-                case_.bodies, spacing, layers, fluid.rho(), h
-            )
-        );
-        Info<< "    rigid bodies: " << bodyCoupling_->size()
-            << " dummy particles" << nl;
-        case_.restart.readAcceleration
-        (
-            "bodyParticle", bodyCoupling_->acceleration()
-        );
-    }
-
-    // The solids seen by the particles (eq. 27)
-    if (elements_)
-    {
-        structureCoupling_.reset
-        (
-            new structureParticleCoupling
-            (
-                mesh, *elements_, case_.patchTypes, spacing, layers,
-                fluid.rho(), h
-            )
-        );
-        if (structureCoupling_->size() == 0)
-        {
-            structureCoupling_.reset();
-        }
-        else
-        {
-            Info<< "    structure-particle coupling: "
-                << structureCoupling_->size()
-                << " virtual particles in the solid regions" << nl;
-            case_.restart.readAcceleration
-            (
-                "virtualParticle", structureCoupling_->acceleration()
-            );
-        }
-    }
-    collectCouplings();
+    createStructureCouplings(fluid.rho(), spacing, layers, h);
 
     if (!rhoOld.empty())
     {
@@ -180,6 +134,60 @@ void Foam::spemMethod::createParticleHalf
         << ", densityDiffusion " << c.densityDiffusion
         << ", shifting " << c.shifting
         << ", freeSurfaceThreshold " << c.freeSurfaceThreshold << nl;
+}
+
+
+void Foam::spemMethod::createStructureCouplings
+(
+    const scalar rho0,
+    const scalar spacing,
+    const label layers,
+    const scalar h
+)
+{
+    const triMesh& mesh = case_.mesh;
+
+    // The rigid bodies seen by the particles
+    if (!case_.bodies.empty())
+    {
+        bodyCoupling_.reset
+        (
+            new bodyParticleCoupling(case_.bodies, spacing, layers, rho0, h)
+        );
+        Info<< "    rigid bodies: " << bodyCoupling_->size()
+            << " dummy particles" << nl;
+        case_.restart.readAcceleration
+        (
+            "bodyParticle", bodyCoupling_->acceleration()
+        );
+    }
+
+    // The solids seen by the particles (eq. 27)
+    if (elements_)
+    {
+        structureCoupling_.reset
+        (
+            new structureParticleCoupling
+            (
+                mesh, *elements_, case_.patchTypes, spacing, layers, rho0, h
+            )
+        );
+        if (structureCoupling_->size() == 0)
+        {
+            structureCoupling_.reset();
+        }
+        else
+        {
+            Info<< "    structure-particle coupling: "
+                << structureCoupling_->size()
+                << " virtual particles in the solid regions" << nl;
+            case_.restart.readAcceleration
+            (
+                "virtualParticle", structureCoupling_->acceleration()
+            );
+        }
+    }
+    collectCouplings();
 }
 
 
@@ -366,9 +374,9 @@ bool Foam::spemMethod::fail(const std::string& why)
 Foam::spemMethod::spemMethod(const spemCase& c)
 :
     case_(c),
-    lastDeltaT_(0),
     elementFluid_(nullptr),
-    fluidSpacing_(0)
+    fluidSpacing_(0),
+    lastDeltaT_(0)
 {}
 
 

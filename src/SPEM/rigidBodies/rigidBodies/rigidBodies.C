@@ -30,8 +30,20 @@ Foam::rigidBodies::rigidBodies(const Time& runTime)
 
 
 Foam::rigidBodies::rigidBodies(const dictionary& dict)
+:
+    elementContactDistance_
+    (
+        dict.getOrDefault<scalar>("elementContactDistance", 0.25)
+    )
 {
-    checkKeywords(dict, {"bodies"});
+    checkKeywords(dict, {"bodies", "elementContactDistance"});
+    if (!(elementContactDistance_ > 0 && elementContactDistance_ <= 0.5))
+    {
+        FatalIOErrorInFunction(dict)
+            << "elementContactDistance " << elementContactDistance_
+            << " must lie in (0, 0.5] mean fluid element spacings"
+            << " (default 0.25)" << exit(FatalIOError);
+    }
 
     const entry* bodiesEntry = dict.findEntry("bodies", keyType::LITERAL);
     if (!bodiesEntry)
