@@ -902,7 +902,7 @@ void Foam::spemModel::setupConversion()
             new groupConversion
             (
                 schemes_.subOrEmptyDict("conversion"), mesh_, fluidTri,
-                ratio*std::sqrt(areaMax), &bodies_
+                ratio*std::sqrt(areaMax), bodies_.surfaces()
             )
         );
         conversion_->describe(Info);
@@ -1082,7 +1082,8 @@ Foam::bodyElementCoupling::preparedMesh Foam::spemModel::fitElementsToBodies
         const PtrList<presetParticleRegion> regions =
             readPresetParticleRegions
             (
-                schemes_.subOrEmptyDict("conversion"), mesh_, &bodies_
+                schemes_.subOrEmptyDict("conversion"), mesh_,
+                bodies_.surfaces()
             );
         const std::vector<scalar>& X = mesh_.points();
         for (label t = 0; t < nTri && !regions.empty(); ++t)

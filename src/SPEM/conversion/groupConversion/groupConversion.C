@@ -14,7 +14,7 @@ Foam::groupConversion::groupConversion
     const triMesh& mesh,
     const std::vector<bool>& fluidTriangle,
     const scalar hMax,
-    const rigidBodies* bodies
+    const bodySurfaces& bodies
 )
 :
     criterion_(distortionCriterion::New(conversionDict)),
