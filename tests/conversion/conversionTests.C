@@ -587,7 +587,7 @@ TEST(PresetParticleRegions, patchDistanceSelectsPointsNearARigidBody)
     (
         "test",
         dictionaryFrom("type patchDistance; bodies (cylinder); distance 0.1;"),
-        mesh, &bodies
+        mesh, bodies.surfaces()
     );
     EXPECT_TRUE(nearCylinder->contains(0.5, 0.5));      // inside the body
     EXPECT_TRUE(nearCylinder->contains(0.79, 0.5));     // 0.09 from it
@@ -604,7 +604,7 @@ TEST(PresetParticleRegions, patchDistanceSelectsPointsNearARigidBody)
             "type patchDistance; patches (bottom); bodies (wedge);"
             " distance 0.1;"
         ),
-        mesh, &bodies
+        mesh, bodies.surfaces()
     );
     EXPECT_TRUE(both->contains(0.5, 0.05));
     EXPECT_TRUE(both->contains(2.5, -0.05));
@@ -619,7 +619,7 @@ TEST(PresetParticleRegions, patchDistanceSelectsPointsNearARigidBody)
             (
                 "test",
                 dictionaryFrom("type patchDistance; bodies (sphere); distance 0.1;"),
-                mesh, &bodies
+                mesh, bodies.surfaces()
             );
         },
         {"sphere", "cylinder", "wedge"}

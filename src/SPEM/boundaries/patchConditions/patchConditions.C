@@ -2,15 +2,6 @@
 
 #include <cmath>
 
-const Foam::Enum<Foam::patchType> Foam::patchTypeNames
-({
-    { patchType::clamped, "clamped" },
-    { patchType::slipWall, "slipWall" },
-    { patchType::noSlipWall, "noSlipWall" },
-    { patchType::freeSurface, "freeSurface" },
-});
-
-
 void Foam::nodeConstraints
 (
     const triMesh& mesh,

@@ -1,6 +1,7 @@
 #include "groupConversion.H"
 #include "elementModel.H"
 #include "checkKeywords.H"
+#include "parallelLoop.H"
 
 #include <algorithm>
 #include <cmath>
@@ -13,7 +14,7 @@ Foam::groupConversion::groupConversion
     const triMesh& mesh,
     const std::vector<bool>& fluidTriangle,
     const scalar hMax,
-    const rigidBodies* bodies
+    const bodySurfaces& bodies
 )
 :
     criterion_(distortionCriterion::New(conversionDict)),
@@ -180,7 +181,7 @@ Foam::groupConversion::trianglesToConvert
         const label end = elements.regions()[r].elemEnd;
 
         // Performance critical: every fluid element, every step
-        #pragma omp parallel for schedule(static) if(end - begin > elementModel::minParallelLoop)
+        #pragma omp parallel for schedule(static) if(end - begin > minParallelLoop)
         for (label el = begin; el < end; ++el)
         {
             const label* n = &nodes[3*el];

@@ -1,4 +1,5 @@
 #include "linearElastic.H"
+#include "parallelLoop.H"
 #include "addToRunTimeSelectionTable.H"
 
 namespace Foam

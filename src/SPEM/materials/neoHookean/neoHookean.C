@@ -1,4 +1,5 @@
 #include "neoHookean.H"
+#include "parallelLoop.H"
 #include "addToRunTimeSelectionTable.H"
 
 namespace Foam

@@ -1,4 +1,5 @@
 #include "saintVenantKirchhoff.H"
+#include "parallelLoop.H"
 #include "addToRunTimeSelectionTable.H"
 
 namespace Foam

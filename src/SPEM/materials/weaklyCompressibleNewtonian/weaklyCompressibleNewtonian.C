@@ -1,4 +1,5 @@
 #include "weaklyCompressibleNewtonian.H"
+#include "parallelLoop.H"
 #include "addToRunTimeSelectionTable.H"
 
 namespace Foam

@@ -72,7 +72,8 @@ std::vector<bool> Foam::spemMethods::SPEM::holdPresetTriangles
     const PtrList<presetParticleRegion> regions =
         readPresetParticleRegions
         (
-            case_.schemes.subOrEmptyDict("conversion"), mesh, &case_.bodies
+            case_.schemes.subOrEmptyDict("conversion"), mesh,
+            case_.bodies.surfaces()
         );
     const std::vector<scalar>& X = mesh.points();
     for (label t = 0; t < nTri && !regions.empty(); ++t)
@@ -180,7 +181,7 @@ void Foam::spemMethods::SPEM::setupConversion()
         new groupConversion
         (
             case_.schemes.subOrEmptyDict("conversion"), case_.mesh, fluidTri,
-            ratio*std::sqrt(maxArea), &case_.bodies
+            ratio*std::sqrt(maxArea), case_.bodies.surfaces()
         )
     );
     conversion_->describe(Info);

@@ -1,5 +1,5 @@
 #include "cellLinkedList.H"
-#include "spemMaterial.H"
+#include "parallelLoop.H"
 #include "error.H"
 
 #include <algorithm>
@@ -14,8 +14,8 @@ namespace
 using Foam::label;
 using Foam::scalar;
 
-//- Loops shorter than this run on one thread (see spemMaterial)
-constexpr label minParallelLoop = Foam::spemMaterial::minParallelLoop;
+//- Loops shorter than this run on one thread (core/parallelLoop)
+using Foam::minParallelLoop;
 
 //- Relative enlargement of the cell size: a pair closer than the requested
 //  size then always lies in adjacent cells, whatever the rounding of the

@@ -1,5 +1,5 @@
 #include "particleSet.H"
-#include "spemMaterial.H"
+#include "parallelLoop.H"
 #include "error.H"
 
 #include <algorithm>
@@ -11,8 +11,8 @@ namespace
 
 using Foam::label;
 
-//- Loops shorter than this run on one thread (see spemMaterial)
-constexpr label minParallelLoop = Foam::spemMaterial::minParallelLoop;
+//- Loops shorter than this run on one thread (core/parallelLoop)
+using Foam::minParallelLoop;
 
 template<class Type>
 std::size_t capacityBytes(const std::vector<Type>& v)

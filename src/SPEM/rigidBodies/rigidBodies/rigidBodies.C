@@ -88,6 +88,28 @@ Foam::label Foam::rigidBodies::findBody(const word& name) const
 }
 
 
+Foam::bodySurfaces Foam::rigidBodies::surfaces() const
+{
+    bodySurfaces s;
+    s.reserve(size());
+    for (const rigidBody& body : *this)
+    {
+        const rigidBody* b = &body;
+        s.push_back
+        (
+            {
+                body.name(),
+                [b](const scalar x, const scalar y)
+                {
+                    return b->signedDistance(x, y);
+                }
+            }
+        );
+    }
+    return s;
+}
+
+
 bool Foam::rigidBodies::anySliding() const
 {
     forAll(*this, i)

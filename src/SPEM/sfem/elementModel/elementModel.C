@@ -1,4 +1,5 @@
 #include "elementModel.H"
+#include "parallelLoop.H"
 #include "error.H"
 
 #include <cmath>

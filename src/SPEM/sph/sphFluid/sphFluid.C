@@ -1,7 +1,7 @@
 #include "sphFluid.H"
 #include "dictionary.H"
 #include "checkKeywords.H"
-#include "spemMaterial.H"
+#include "parallelLoop.H"
 
 #include <algorithm>
 #include <cmath>
@@ -10,7 +10,7 @@
 
 namespace
 {
-    constexpr Foam::label minParallelLoop = Foam::spemMaterial::minParallelLoop;
+    using Foam::minParallelLoop;
 
     using Foam::scalar;
     using Foam::label;

@@ -15,7 +15,7 @@ Foam::boxRegion::boxRegion
     const word& name,
     const dictionary& dict,
     const triMesh& mesh,
-    const rigidBodies* bodies
+    const bodySurfaces& bodies
 )
 :
     presetParticleRegion(name)

@@ -22,7 +22,7 @@ Foam::patchDistanceRegion::patchDistanceRegion
     const word& name,
     const dictionary& dict,
     const triMesh& mesh,
-    const rigidBodies* bodies
+    const bodySurfaces& bodies
 )
 :
     presetParticleRegion(name)
@@ -61,17 +61,22 @@ Foam::patchDistanceRegion::patchDistanceRegion
 
     for (const word& body : dict.getOrDefault<wordList>("bodies", wordList()))
     {
-        const label b = bodies ? bodies->findBody(body) : -1;
-        if (b < 0)
+        const auto b = std::find_if
+        (
+            bodies.begin(),
+            bodies.end(),
+            [&](const bodySurface& s) { return s.name == body; }
+        );
+        if (b == bodies.end())
         {
-            wordList names(bodies ? bodies->size() : 0);
-            forAll(names, i) names[i] = (*bodies)[i].name();
+            wordList names(label(bodies.size()));
+            forAll(names, i) names[i] = bodies[i].name;
             FatalIOErrorInFunction(dict)
                 << "Unknown rigid body " << body << " in entry 'bodies' of "
                 << dict.name() << ". Bodies of constant/rigidBodyProperties: "
                 << names << exit(FatalIOError);
         }
-        bodies_.push_back(&(*bodies)[b]);
+        bodies_.push_back(*b);
     }
 
     distance_ = readPositive(dict, "distance");
@@ -92,9 +97,9 @@ Foam::patchDistanceRegion::patchDistanceRegion
 
 bool Foam::patchDistanceRegion::contains(const scalar x, const scalar y) const
 {
-    for (const rigidBody* body : bodies_)
+    for (const bodySurface& body : bodies_)
     {
-        if (body->signedDistance(x, y) <= distance_) return true;
+        if (body.signedDistance(x, y) <= distance_) return true;
     }
 
     const scalar distance2 = distance_*distance_;

@@ -18,7 +18,7 @@ Foam::polygonRegion::polygonRegion
     const word& name,
     const dictionary& dict,
     const triMesh& mesh,
-    const rigidBodies* bodies
+    const bodySurfaces& bodies
 )
 :
     presetParticleRegion(name)

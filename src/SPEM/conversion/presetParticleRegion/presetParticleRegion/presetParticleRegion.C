@@ -36,7 +36,7 @@ Foam::PtrList<Foam::presetParticleRegion> Foam::readPresetParticleRegions
 (
     const dictionary& conversionDict,
     const triMesh& mesh,
-    const rigidBodies* bodies
+    const bodySurfaces& bodies
 )
 {
     PtrList<presetParticleRegion> regions;

@@ -5,7 +5,7 @@ Foam::autoPtr<Foam::presetParticleRegion> Foam::presetParticleRegion::New
     const word& name,
     const dictionary& dict,
     const triMesh& mesh,
-    const rigidBodies* bodies
+    const bodySurfaces& bodies
 )
 {
     const word regionType(dict.get<word>("type"));
