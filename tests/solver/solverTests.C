@@ -1120,6 +1120,228 @@ TEST_F(SolverRestart, binaryRestartReproducesContinuousRunExactly)
 }
 
 
+TEST_F(SolverRestart, lowWritePrecisionStillRestartsBitForBit)
+{
+    // writePrecision 6 is for the readable output; the restart state is
+    // written in full whatever it says (it differed by ~1e-6 at 6 digits)
+    setControl("writePrecision", "6");
+    setControl("writeInterval", "50");
+    damping_ = "    massProportional 5;\n";
+    const std::string T = "0.1", twoT = "0.2";
+    fs::path caseA, caseB;
+    runContinuousAndRestarted
+    (
+        T, twoT,
+        [&](const fs::path& B)
+        {
+            return std::vector<std::string>
+            {
+                "Restart: read node positions", (B/T/"spem").string()
+            };
+        },
+        caseA, caseB
+    );
+    if (HasFailure()) return;
+    for (const char* name : {"points", "U"})
+    {
+        SCOPED_TRACE(name);
+        const Foam::vectorField a = readState(twoT, name, caseA);
+        const Foam::vectorField b = readState(twoT, name, caseB);
+        ASSERT_EQ(a.size(), b.size());
+        EXPECT_EQ(relativeDifference(a, b), 0);
+        EXPECT_EQ(readText(caseA/twoT/"spem"/name), readText(caseB/twoT/"spem"/name));
+    }
+}
+
+
+TEST_F(SolverRestart, everyWrittenStateListsItsFilesAndNoPartialFolderIsLeft)
+{
+    setControl("writeInterval", "10");
+    runExpectingSuccess();
+    if (HasFailure()) return;
+    int nStates = 0;
+    for (const fs::directory_entry& d : fs::directory_iterator(caseDir_))
+    {
+        EXPECT_FALSE(fs::exists(d.path()/"spem.writing")) << d.path();
+        if (!fs::exists(d.path()/"spem")) continue;
+        ++nStates;
+        const std::string list = readText(d.path()/"spem"/"restartFiles");
+        for (const fs::directory_entry& f : fs::directory_iterator(d.path()/"spem"))
+        {
+            const std::string name = f.path().filename().string();
+            if (name == "restartFiles") continue;
+            EXPECT_TRUE(contains(list, name)) << name << " not in\n" << list;
+        }
+        EXPECT_TRUE(contains(list, "points")) << list;
+    }
+    EXPECT_EQ(nStates, 3);    // 0, 0.01, 0.02
+}
+
+
+//- Fixture: a state written to T, damaged, and a run on from it
+class SolverDamagedRestart : public SolverRestart
+{
+protected:
+
+    //- Run to T = 0.02 (writes at 0.01, 0.02), let damage() spoil the
+    //  latest time, and run on to 0.04 expecting a stop; the log
+    template<class Damage>
+    std::string restartAfter(Damage&& damage)
+    {
+        setControl("writeControl", "runTime");
+        setControl("writeInterval", "0.01");
+        runExpectingSuccess();
+        if (HasFailure()) return "";
+        damage(caseDir_/"0.02");
+        setControl("endTime", "0.04");
+        writeDictionaries();
+        const int status = runSolver("log.spemFoam.restart");
+        const std::string text = log("log.spemFoam.restart");
+        EXPECT_GT(status, 0) << "spemFoam "
+            << (status == 0 ? "accepted the state" : "crashed") << ":\n"
+            << text;
+        EXPECT_FALSE(contains(text, "Starting time loop")) << text;
+        return text;
+    }
+};
+
+
+TEST_F(SolverDamagedRestart, latestTimeWithoutStateStopsInsteadOfStartingOver)
+{
+    // As an interrupted write left it before this version: a time folder
+    // without spem/ (it restarted from t = 0 under the later time's label)
+    const std::string text =
+        restartAfter([](const fs::path& t) { fs::remove_all(t/"spem"); });
+    expectInLog(text, {"FATAL IO ERROR", "0.02", "no restart state", "startFrom"});
+}
+
+
+TEST_F(SolverDamagedRestart, missingListedFileStopsNamingIt)
+{
+    const std::string text =
+        restartAfter([](const fs::path& t) { fs::remove(t/"spem"/"U"); });
+    expectInLog(text, {"FATAL ERROR", "0.02/spem/U", "missing"});
+}
+
+
+TEST_F(SolverDamagedRestart, emptyParticleFileStopsNamingIt)
+{
+    useSPH();
+    const std::string text = restartAfter
+    (
+        [](const fs::path& t)
+        {
+            std::ofstream(t/"spem"/"particlePositions", std::ios::trunc);
+        }
+    );
+    expectInLog(text, {"FATAL ERROR", "particlePositions", "empty"});
+}
+
+
+TEST_F(SolverDamagedRestart, nonPositiveDensityStopsNamingTheFile)
+{
+    useSPH();
+    const std::string text = restartAfter
+    (
+        [](const fs::path& t)
+        {
+            const fs::path f = t/"spem"/"particleRho";
+            std::string body = readText(f);
+            // The first value of the list: the line after the count
+            const std::size_t open = body.find("\n(\n");
+            ASSERT_NE(open, std::string::npos) << body;
+            const std::size_t end = body.find('\n', open + 3);
+            body.replace(open + 3, end - open - 3, "-1000");
+            std::ofstream(f, std::ios::trunc) << body;
+        }
+    );
+    expectInLog(text, {"FATAL ERROR", "particleRho", "not positive"});
+}
+
+
+// * * * * * * * * * * * * * * * * controlDict * * * * * * * * * * * * * * * //
+
+TEST_F(Solver, misspeltControlDictEntryStopsNamingTheKnownOne)
+{
+    // maxCO 0.5 used to run silently with the default 0.9
+    setControl("maxCO", "0.5");
+    const std::string text = runExpectingFatalError();
+    expectInLog(text, {"FATAL IO ERROR", "'maxCO'", "'maxCo'", "controlDict"});
+}
+
+
+TEST_F(Solver, userVariablesInControlDictAreNotMistakenForMisspellings)
+{
+    // The tutorials keep their own variables there (V0, d, timeScale)
+    setControl("V0", "0.39");
+    setControl("timeScale", "2");
+    setControl("d", "0.1");
+    runExpectingSuccess();
+}
+
+
+TEST_F(Solver, nonPositiveWriteIntervalOrDeltaTStops)
+{
+    for
+    (
+        const std::pair<std::string, std::string>& entry
+      : std::vector<std::pair<std::string, std::string>>
+        {
+            {"writeInterval", "0"}, {"writeInterval", "-10"},
+            {"deltaT", "0"}, {"deltaT", "-1e-3"}
+        }
+    )
+    {
+        SCOPED_TRACE(entry.first + " " + entry.second);
+        for (const char* control : {"timeStep", "adjustableRunTime"})
+        {
+            SCOPED_TRACE(control);
+            // The case is made with good values (making it reads the
+            // controlDict), then the bad one is written
+            setControl("writeInterval", "10");
+            setControl("deltaT", "1e-3");
+            setControl("writeControl", control);
+            writeCase();
+            if (HasFatalFailure()) return;
+            setControl(entry.first, entry.second);
+            writeDictionaries();
+            const int status = runSolver();
+            const std::string text = log();
+            // An exit, not a crash (signal: -1)
+            EXPECT_GT(status, 0) << text;
+            expectInLog(text, {"FATAL IO ERROR", entry.first, "controlDict"});
+        }
+    }
+}
+
+
+TEST_F(Solver, endTimeBeforeTheStartTimeStops)
+{
+    // A run to 0.02, then endTime 0.01 from the latest time (0.02): it
+    // used to exit 0 having done nothing
+    runExpectingSuccess();
+    if (HasFailure()) return;
+    setControl("endTime", "0.01");
+    writeDictionaries();
+    EXPECT_GT(runSolver("log.spemFoam.restart"), 0);
+    expectInLog
+    (
+        log("log.spemFoam.restart"), {"FATAL IO ERROR", "endTime", "0.02"}
+    );
+}
+
+
+TEST_F(Solver, unknownFunctionObjectTypeStopsListingValidTypes)
+{
+    functions_ =
+        "    probe\n    {\n"
+        "        type            pressureProbes;\n"
+        "        probeLocations  ((0.25 0.05 0));\n    }\n";
+    const std::string text = runExpectingFatalError();
+    expectInLog(text, {"FATAL IO ERROR", "pressureProbes", "pressureProbe"});
+}
+
+
 // * * * * * * * * * * * * * * * * * Output  * * * * * * * * * * * * * * * * //
 
 TEST_F(Solver, writesVTKSeriesStateAndFunctionObjectFiles)

@@ -39,10 +39,12 @@ int main(int argc, char *argv[])
     argList::noParallel();
 
     #include "setRootCase.H"
+    timeStepControl::checkBeforeTime(args.path());
     #include "createTime.H"
 
-    spemModel model(runTime);
+    // controlDict first: a bad entry stops before the case is read
     timeStepControl timeStep(runTime);
+    spemModel model(runTime);
 
     // Forces and stable step of the initial state; the initial state goes
     // to the ParaView series

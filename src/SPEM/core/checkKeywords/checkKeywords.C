@@ -1,5 +1,10 @@
 #include "checkKeywords.H"
 
+#include <algorithm>
+#include <cctype>
+#include <string>
+#include <vector>
+
 void Foam::checkKeywords(const dictionary& dict, const wordList& allowed)
 {
     for (const entry& e : dict)
@@ -10,6 +15,66 @@ void Foam::checkKeywords(const dictionary& dict, const wordList& allowed)
                 << "Unknown keyword '" << e.keyword() << "' in "
                 << dict.name() << nl << "Valid keywords: " << allowed
                 << exit(FatalIOError);
+        }
+    }
+}
+
+
+namespace
+{
+
+//- Letters to change, insert, delete or swap to turn a into b, ignoring
+//  case (optimal string alignment distance)
+std::size_t editDistance(const std::string& a, const std::string& b)
+{
+    const auto lower = [](const char c) { return char(std::tolower(c)); };
+    const std::size_t n = a.size(), m = b.size();
+    std::vector<std::vector<std::size_t>> d
+    (
+        n + 1, std::vector<std::size_t>(m + 1, 0)
+    );
+    for (std::size_t i = 0; i <= n; ++i) d[i][0] = i;
+    for (std::size_t j = 0; j <= m; ++j) d[0][j] = j;
+    for (std::size_t i = 1; i <= n; ++i)
+    {
+        for (std::size_t j = 1; j <= m; ++j)
+        {
+            const std::size_t cost = lower(a[i - 1]) == lower(b[j - 1]) ? 0 : 1;
+            d[i][j] =
+                std::min({d[i - 1][j] + 1, d[i][j - 1] + 1, d[i - 1][j - 1] + cost});
+            if
+            (
+                i > 1 && j > 1 && lower(a[i - 1]) == lower(b[j - 2])
+             && lower(a[i - 2]) == lower(b[j - 1])
+            )
+            {
+                d[i][j] = std::min(d[i][j], d[i - 2][j - 2] + 1);
+            }
+        }
+    }
+    return d[n][m];
+}
+
+} // End anonymous namespace
+
+
+void Foam::checkKeywordSpelling(const dictionary& dict, const wordList& known)
+{
+    for (const entry& e : dict)
+    {
+        const word& key = e.keyword();
+        if (known.found(key)) continue;
+        for (const word& k : known)
+        {
+            // One letter off for short names, two for longer ones
+            const std::size_t allowed = k.size() <= 5 ? 1 : 2;
+            if (editDistance(key, k) <= allowed)
+            {
+                FatalIOErrorInFunction(dict)
+                    << "Unknown keyword '" << key << "' in " << dict.name()
+                    << ": did you mean '" << k << "'?" << nl
+                    << "Known keywords: " << known << exit(FatalIOError);
+            }
         }
     }
 }

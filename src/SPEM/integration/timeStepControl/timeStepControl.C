@@ -1,9 +1,65 @@
 #include "timeStepControl.H"
+#include "checkKeywords.H"
+#include "functionObject.H"
+#include "IFstream.H"
 
 #include <algorithm>
 #include <cmath>
 
 // * * * * * * * * * * * * * Private Member Functions  * * * * * * * * * * * //
+
+void Foam::timeStepControl::checkControlDict() const
+{
+    const dictionary& controls = runTime_.controlDict();
+
+    // What OpenFOAM's Time, its function objects and library loading, and
+    // this solver read from system/controlDict
+    checkKeywordSpelling
+    (
+        controls,
+        {
+            "application", "startFrom", "startTime", "stopAt", "endTime",
+            "deltaT", "writeControl", "writeInterval", "writeFrequency",
+            "purgeWrite", "writeFormat", "writeVersion", "writeCompression",
+            "writePrecision", "timeFormat", "timePrecision", "graphFormat",
+            "runTimeModifiable", "adjustTimeStep", "maxCo", "maxDeltaT",
+            "functions", "libs", "profiling", "cacheTemporaryObjects",
+            "fileHandler", "DebugSwitches", "InfoSwitches",
+            "OptimisationSwitches", "DimensionSets", "DimensionedConstants",
+            "Tolerances", "logInterval"
+        }
+    );
+
+    const scalar start = runTime_.startTime().value();
+    const scalar end = runTime_.endTime().value();
+    if (end < start)
+    {
+        FatalIOErrorInFunction(controls)
+            << "endTime " << end << " is before the start time " << start
+            << " (startFrom "
+            << controls.getOrDefault<word>("startFrom", "startTime")
+            << "): nothing to run. Raise endTime to continue the run"
+            << exit(FatalIOError);
+    }
+
+    // OpenFOAM only warns about a function object it cannot make and runs
+    // without it
+    const dictionary* functions = controls.findDict("functions");
+    if (!functions) return;
+    for (const entry& e : *functions)
+    {
+        if (!e.isDict()) continue;
+        const word type(e.dict().getOrDefault<word>("type", word::null));
+        const auto* table = functionObject::dictionaryConstructorTablePtr_;
+        if (table && table->found(type)) continue;
+        FatalIOErrorInFunction(e.dict())
+            << "Unknown function object type '" << type << "' of '"
+            << e.keyword() << "' in " << functions->name() << nl
+            << "Valid types: "
+            << (table ? table->sortedToc() : wordList()) << exit(FatalIOError);
+    }
+}
+
 
 Foam::scalar Foam::timeStepControl::stepToWriteTime(const scalar dt) const
 {
@@ -14,6 +70,30 @@ Foam::scalar Foam::timeStepControl::stepToWriteTime(const scalar dt) const
     const scalar toNext = next - t;
     const scalar n = std::ceil(toNext/dt*(1 - 1e-12));
     return toNext/std::max(n, scalar(1));
+}
+
+
+// * * * * * * * * * * * * * * * Static Functions  * * * * * * * * * * * * * //
+
+void Foam::timeStepControl::checkBeforeTime(const fileName& casePath)
+{
+    // OpenFOAM's Time divides by both while it is constructed: a zero
+    // raises SIGFPE there, a negative one runs time backwards
+    IFstream is(casePath/"system"/"controlDict");
+    if (!is.good()) return;     // Time itself says it is missing
+    const dictionary controls(is);
+    for (const word key : {"deltaT", "writeInterval"})
+    {
+        const scalar value = controls.getOrDefault<scalar>(key, 1);
+        if (!(value > 0))
+        {
+            FatalIOErrorInFunction(controls)
+                << key << ' ' << value << " must be positive"
+                << (key == "writeInterval"
+                  ? " (time steps or seconds, as writeControl says)" : "")
+                << exit(FatalIOError);
+        }
+    }
 }
 
 
@@ -46,6 +126,7 @@ Foam::timeStepControl::timeStepControl(Time& runTime)
     startTime_(runTime.startTime().value()),
     stableDeltaT_(GREAT)
 {
+    checkControlDict();
     const dictionary& controls = runTime.controlDict();
     if (!(maxCo_ > 0) || logInterval_ < 1)
     {

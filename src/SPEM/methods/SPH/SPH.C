@@ -106,6 +106,14 @@ void Foam::spemMethods::SPH::buildParticles
     particleSet ps;
     std::vector<scalar> rhoOld;
     const bool restart = case_.restart.readParticles(ps, rhoOld);
+    if (!restart && case_.restart.restarting())
+    {
+        FatalErrorInFunction
+            << "The restart state " << case_.restart.startPath()
+            << " has no particlePositions: method SPH needs the fluid"
+            << " particles (a state written by another method?)"
+            << exit(FatalError);
+    }
     if (restart && ps.size() != label(fluidElements.size()))
     {
         FatalErrorInFunction

@@ -12,20 +12,116 @@
 #include "OSspecific.H"
 
 #include <algorithm>
+#include <cmath>
+
+namespace
+{
+    //- The folder of a state, the folder it is written in, its file list
+    const Foam::word stateDir("spem");
+    const Foam::word writingDir("spem.writing");
+    const Foam::word manifest("restartFiles");
+
+    bool isFinite(const Foam::scalar s) { return std::isfinite(s); }
+    bool isFinite(const Foam::vector& v)
+    {
+        return std::isfinite(v.x()) && std::isfinite(v.y());
+    }
+    bool isPositive(const Foam::scalar s) { return s > 0; }
+    bool isPositive(const Foam::vector&) { return true; }
+}
+
 
 // * * * * * * * * * * * * * Private Member Functions  * * * * * * * * * * * //
 
-Foam::IOobject Foam::restartState::file
-(
-    const word& name,
-    const IOobject::readOption r
-) const
+Foam::IOobject Foam::restartState::file(const word& name) const
 {
     return IOobject
     (
-        name, runTime_.timeName(), "spem", runTime_, r, IOobject::NO_WRITE,
-        false
+        name, runTime_.timeName(), stateDir, runTime_, IOobject::MUST_READ,
+        IOobject::NO_WRITE, false
     );
+}
+
+
+Foam::IOobject Foam::restartState::outFile(const word& name) const
+{
+    return IOobject
+    (
+        name, runTime_.timeName(), writingDir, runTime_, IOobject::NO_READ,
+        IOobject::NO_WRITE, false
+    );
+}
+
+
+void Foam::restartState::writeExact
+(
+    const regIOobject& io,
+    const bool ascii
+) const
+{
+    OFstream os
+    (
+        io.objectPath(),
+        ascii ? IOstream::ASCII : runTime_.writeFormat(),
+        IOstream::currentVersion,
+        runTime_.writeCompression()
+    );
+    // All the digits of a double: the restart continues bit for bit
+    os.precision(17);
+    io.writeHeader(os);
+    io.writeData(os);
+    IOobject::writeEndDivider(os);
+    if (!os.good())
+    {
+        FatalErrorInFunction
+            << "Could not write " << io.objectPath() << exit(FatalError);
+    }
+    written_.append(io.name());
+}
+
+
+template<class Type>
+bool Foam::restartState::listed(const IOobject& io) const
+{
+    if (!startFiles_.found(io.name())) return false;
+    IOobject header(io);
+    if (!header.typeHeaderOk<Type>(true))
+    {
+        bad(io, "empty, truncated or not an OpenFOAM file");
+    }
+    return true;
+}
+
+
+void Foam::restartState::bad(const IOobject& io, const std::string& why) const
+{
+    FatalErrorInFunction
+        << "Restart state " << io.objectPath() << ": " << why.c_str() << nl
+        << "    Remove time " << runTime_.timeName()
+        << " to start from the time before it." << exit(FatalError);
+    std::abort();
+}
+
+
+template<class Type>
+void Foam::restartState::checkValues
+(
+    const IOobject& io,
+    const Field<Type>& f,
+    const bool mustBePositive
+) const
+{
+    forAll(f, i)
+    {
+        if (!isFinite(f[i]))
+        {
+            bad(io, "entry " + std::to_string(i) + " is not finite");
+        }
+        if (mustBePositive && !isPositive(f[i]))
+        {
+            bad(io, "entry " + std::to_string(i) + " is not positive");
+        }
+    }
 }
 
 
@@ -33,7 +129,7 @@ void Foam::restartState::writeParticles(const sphFluid& particles) const
 {
     const particleSet& ps = particles.particles();
     const label nFluid = particles.nFluid();
-    const IOobject xIO(file("particlePositions", IOobject::NO_READ));
+    const IOobject xIO(outFile("particlePositions"));
     vectorIOField xf(xIO, nFluid);
     vectorIOField vf(IOobject(xIO, "particleU"), nFluid);
     scalarIOField rho(IOobject(xIO, "particleRho"), nFluid);
@@ -63,12 +159,14 @@ void Foam::restartState::writeParticles(const sphFluid& particles) const
         m[k] = ps.mass()[i];
         h[k] = ps.smoothingLength()[i];
     }
-    xf.write();
-    vf.write();
-    rho.write();
-    rhoOld.write();
-    m.write();
-    h.write();
+    for (const regIOobject* f : {&xf, &vf})
+    {
+        writeExact(*f);
+    }
+    for (const regIOobject* f : {&rho, &rhoOld, &m, &h})
+    {
+        writeExact(*f);
+    }
 }
 
 
@@ -78,7 +176,7 @@ void Foam::restartState::writeAcceleration
     const wallAcceleration& wa
 ) const
 {
-    const IOobject uIO(file(name + "OldU", IOobject::NO_READ));
+    const IOobject uIO(outFile(name + "OldU"));
     vectorIOField U(uIO, wa.size());
     vectorIOField A(IOobject(uIO, name + "Acceleration"), wa.size());
     forAll(U, k)
@@ -86,8 +184,8 @@ void Foam::restartState::writeAcceleration
         U[k] = vector(wa.oldVelocities()[2*k], wa.oldVelocities()[2*k + 1], 0);
         A[k] = vector(wa.accelerations()[2*k], wa.accelerations()[2*k + 1], 0);
     }
-    U.write();
-    A.write();
+    writeExact(U);
+    writeExact(A);
 }
 
 
@@ -96,14 +194,60 @@ void Foam::restartState::writeAcceleration
 Foam::restartState::restartState(const Time& runTime)
 :
     runTime_(runTime)
-{}
+{
+    const fileName dir = startPath();
+    if (!isDir(dir))
+    {
+        if (runTime.value() == 0) return;     // a fresh start
+        FatalIOErrorInFunction(runTime.controlDict())
+            << "Start time " << runTime.timeName() << " (startFrom "
+            << runTime.controlDict().getOrDefault<word>("startFrom", "startTime")
+            << ") has no restart state " << dir << ": its write was"
+            << " interrupted, or no run wrote that time." << nl
+            << "    Remove " << runTime.timePath() << " (or set startTime to"
+            << " a time that was written) to continue from an earlier time."
+            << exit(FatalIOError);
+    }
+    IOobject mIO(file(manifest));
+    if (!mIO.typeHeaderOk<IOdictionary>(true))
+    {
+        FatalErrorInFunction
+            << "Restart state " << dir << " has no " << manifest
+            << " (the list of its files): it was written by an earlier"
+            << " version or edited by hand. Remove time "
+            << runTime.timeName() << " to start from the time before it"
+            << exit(FatalError);
+    }
+    startFiles_ = IOdictionary(mIO).get<wordList>("files");
+    for (const word& name : startFiles_)
+    {
+        if (!isFile(dir/name) && !isFile(dir/(name + ".gz")))
+        {
+            bad(file(name), "missing (" + manifest + " lists it)");
+        }
+    }
+    if (startFiles_.empty())
+    {
+        bad(mIO, "lists no files");
+    }
+}
 
 
 // * * * * * * * * * * * * * * * Member Functions  * * * * * * * * * * * * * //
 
+Foam::fileName Foam::restartState::startPath() const
+{
+    return runTime_.timePath()/stateDir;
+}
+
+
 void Foam::restartState::write(const content& c) const
 {
-    mkDir(runTime_.timePath()/"spem");
+    const fileName writing = runTime_.timePath()/writingDir;
+    if (isDir(writing)) rmDir(writing);
+    mkDir(writing);
+    written_.clear();
+
     if (c.particles) writeParticles(*c.particles);
     if (c.virtualParticles)
     {
@@ -112,69 +256,88 @@ void Foam::restartState::write(const content& c) const
     if (c.bodyParticles) writeAcceleration("bodyParticle", *c.bodyParticles);
     if (c.bodies && !c.bodies->empty())
     {
-        IOdictionary state(file("rigidBodies", IOobject::NO_READ));
+        IOdictionary state(outFile("rigidBodies"));
         c.bodies->writeState(state);
-        // All digits: the restart continues the same motion exactly
-        OFstream os(state.objectPath());
-        os.precision(17);
-        state.writeHeader(os);
-        state.writeData(os);
+        writeExact(state, true);
     }
     if (c.bodyNodes)
     {
         const bodyElementCoupling& be = *c.bodyNodes;
-        labelIOList pairs(file("bodyNodes", IOobject::NO_READ), 2*be.size());
+        labelIOList pairs(outFile("bodyNodes"), 2*be.size());
         for (label k = 0; k < be.size(); ++k)
         {
             pairs[2*k] = be.nodes()[k];
             pairs[2*k + 1] = be.bodies()[k];
         }
-        pairs.write();
+        writeExact(pairs);
     }
     if (c.convertedTriangles && !c.convertedTriangles->empty())
     {
         const std::vector<label>& t = *c.convertedTriangles;
-        labelIOList converted
-        (
-            file("convertedTriangles", IOobject::NO_READ), label(t.size())
-        );
+        labelIOList converted(outFile("convertedTriangles"), label(t.size()));
         forAll(converted, i) converted[i] = t[i];
-        converted.write();
+        writeExact(converted);
     }
     if (c.elements)
     {
         const std::vector<scalar>& x = c.elements->positions();
         const std::vector<scalar>& v = c.elements->velocities();
         const label n = c.elements->nNodes();
-        const IOobject xIO(file("points", IOobject::NO_READ));
-        vectorIOField xf(xIO, n);
-        vectorIOField vf(IOobject(xIO, "U"), n);
+        vectorIOField xf(outFile("points"), n);
+        vectorIOField vf(outFile("U"), n);
         for (label i = 0; i < n; ++i)
         {
             xf[i] = vector(x[2*i], x[2*i + 1], 0);
             vf[i] = vector(v[2*i], v[2*i + 1], 0);
         }
-        xf.write();
-        vf.write();
+        writeExact(xf);
+        writeExact(vf);
+    }
+
+    // The list last, then the rename: a state is there whole or not at all
+    IOdictionary list(outFile(manifest));
+    list.add("files", wordList(written_));
+    writeExact(list, true);
+    const fileName dir = runTime_.timePath()/stateDir;
+    if (isDir(dir)) rmDir(dir);
+    if (!mv(writing, dir))
+    {
+        FatalErrorInFunction
+            << "Could not rename " << writing << " to " << dir
+            << exit(FatalError);
     }
 }
 
 
 bool Foam::restartState::readElements(elementModel& elements) const
 {
-    IOobject xIO(file("points", IOobject::MUST_READ));
-    if (!xIO.typeHeaderOk<vectorIOField>(true)) return false;
-
+    const IOobject xIO(file("points"));
+    if (!listed<vectorIOField>(xIO))
+    {
+        if (restarting())
+        {
+            bad(xIO, "missing: the case has elements, the state none"
+                " (written by another method or mesh?)");
+        }
+        return false;
+    }
+    const IOobject vIO(file("U"));
+    if (!listed<vectorIOField>(vIO)) bad(vIO, "missing");
     const vectorIOField xf(xIO);
-    const vectorIOField vf(IOobject(xIO, "U"));
+    const vectorIOField vf(vIO);
     const label nNodes = elements.nNodes();
     if (xf.size() != nNodes || vf.size() != nNodes)
     {
-        FatalErrorInFunction
-            << "Restart state in " << xIO.path() << " has " << xf.size()
-            << " points and " << vf.size() << " velocities; the mesh has "
-            << nNodes << " nodes" << exit(FatalError);
+        bad
+        (
+            xIO,
+            std::to_string(xf.size()) + " points and "
+          + std::to_string(vf.size()) + " velocities; the mesh has "
+          + std::to_string(nNodes) + " nodes"
+        );
     }
+    checkValues(xIO, xf);
+    checkValues(vIO, vf);
     std::vector<scalar> x(2*xf.size()), v(2*vf.size());
     forAll(xf, i)
     {
@@ -196,24 +359,50 @@ bool Foam::restartState::readParticles
     std::vector<scalar>& rhoOld
 ) const
 {
-    IOobject xIO(file("particlePositions", IOobject::MUST_READ));
-    if (!xIO.typeHeaderOk<vectorIOField>(true)) return false;
-
-    const vectorIOField xf(xIO);
-    const vectorIOField vf(IOobject(xIO, "particleU"));
-    const scalarIOField rho(IOobject(xIO, "particleRho"));
-    const scalarIOField m(IOobject(xIO, "particleMass"));
-    const scalarIOField h(IOobject(xIO, "particleH"));
-    const label n = xf.size();
-    if (vf.size() != n || rho.size() != n || m.size() != n || h.size() != n)
+    const IOobject xIO(file("particlePositions"));
+    if (!listed<vectorIOField>(xIO)) return false;
+    const word names[] =
+        {"particleU", "particleRho", "particleRhoOld", "particleMass",
+         "particleH"};
+    for (const word& name : names)
     {
-        FatalErrorInFunction
-            << "Restart particle state in " << xIO.path() << " is"
-            << " inconsistent: " << n << " positions, " << vf.size()
-            << " velocities, " << rho.size() << " densities, " << m.size()
-            << " masses, " << h.size() << " smoothing lengths"
-            << exit(FatalError);
+        const IOobject io(file(name));
+        if (name == "particleU" ? !listed<vectorIOField>(io)
+                                : !listed<scalarIOField>(io))
+        {
+            bad(io, "missing");
+        }
     }
+    const vectorIOField xf(xIO);
+    const vectorIOField vf(file("particleU"));
+    const scalarIOField rho(file("particleRho"));
+    const scalarIOField old(file("particleRhoOld"));
+    const scalarIOField m(file("particleMass"));
+    const scalarIOField h(file("particleH"));
+    const label n = xf.size();
+    for (const label size : {vf.size(), rho.size(), old.size(), m.size(), h.size()})
+    {
+        if (size != n)
+        {
+            bad
+            (
+                xIO,
+                "inconsistent: " + std::to_string(n) + " positions, "
+              + std::to_string(vf.size()) + " velocities, "
+              + std::to_string(rho.size()) + " densities, "
+              + std::to_string(old.size()) + " old densities, "
+              + std::to_string(m.size()) + " masses, "
+              + std::to_string(h.size()) + " smoothing lengths"
+            );
+        }
+    }
+    checkValues(xIO, xf);
+    checkValues(vf, vf);
+    checkValues(rho, rho, true);
+    checkValues(old, old, true);
+    checkValues(m, m, true);
+    checkValues(h, h, true);
+
     particles.reserve(n);
     forAll(xf, i)
     {
@@ -222,16 +411,8 @@ bool Foam::restartState::readParticles
             xf[i].x(), xf[i].y(), vf[i].x(), vf[i].y(), rho[i], 0, m[i], h[i]
         );
     }
-
-    // Densities at the start of the step (volumes of the next evaluation);
-    // a state without them restarts with the current ones
-    IOobject oldIO(xIO, "particleRhoOld");
-    rhoOld.assign(rho.begin(), rho.end());
-    if (oldIO.typeHeaderOk<scalarIOField>(true))
-    {
-        const scalarIOField old(oldIO);
-        if (old.size() == n) rhoOld.assign(old.begin(), old.end());
-    }
+    // Densities at the start of the step (volumes of the next evaluation)
+    rhoOld.assign(old.begin(), old.end());
     Info<< "Restart: read " << n << " fluid particles from " << xIO.path()
         << nl << endl;
     return true;
@@ -244,19 +425,24 @@ void Foam::restartState::readAcceleration
     wallAcceleration& wa
 ) const
 {
-    IOobject uIO(file(name + "OldU", IOobject::MUST_READ));
-    if (!uIO.typeHeaderOk<vectorIOField>(true)) return;
+    const IOobject uIO(file(name + "OldU"));
+    if (!listed<vectorIOField>(uIO)) return;
+    const IOobject aIO(file(name + "Acceleration"));
+    if (!listed<vectorIOField>(aIO)) bad(aIO, "missing");
     const vectorIOField U(uIO);
-    const vectorIOField A(IOobject(uIO, name + "Acceleration"));
+    const vectorIOField A(aIO);
     if (U.size() != wa.size() || A.size() != wa.size())
     {
-        FatalErrorInFunction
-            << "The restart state " << uIO.objectPath() << " has "
-            << U.size() << " moving wall particles; the case has "
-            << wa.size() << ". Is the state from another mesh or"
-            << " body set-up? (Allclean removes it.)"
-            << exit(FatalError);
+        bad
+        (
+            uIO,
+            std::to_string(U.size()) + " moving wall particles; the case has "
+          + std::to_string(wa.size()) + ". Is the state from another mesh or"
+            " body set-up? (Allclean removes it.)"
+        );
     }
+    checkValues(uIO, U);
+    checkValues(aIO, A);
     std::vector<scalar> u(2*U.size()), a(2*A.size());
     forAll(U, k)
     {
@@ -274,8 +460,8 @@ bool Foam::restartState::readConvertedTriangles
     std::vector<label>& triangles
 ) const
 {
-    IOobject cIO(file("convertedTriangles", IOobject::MUST_READ));
-    if (!cIO.typeHeaderOk<labelIOList>(true)) return false;
+    const IOobject cIO(file("convertedTriangles"));
+    if (!listed<labelIOList>(cIO)) return false;
     const labelIOList converted(cIO);
     triangles.assign(converted.begin(), converted.end());
     return true;
@@ -288,8 +474,8 @@ bool Foam::restartState::readBodyNodes
     std::vector<label>& bodies
 ) const
 {
-    IOobject aIO(file("bodyNodes", IOobject::MUST_READ));
-    if (!aIO.typeHeaderOk<labelIOList>(true)) return false;
+    const IOobject aIO(file("bodyNodes"));
+    if (!listed<labelIOList>(aIO)) return false;
     const labelIOList pairs(aIO);
     nodes.clear();
     bodies.clear();
@@ -306,8 +492,8 @@ bool Foam::restartState::readBodyNodes
 
 bool Foam::restartState::readBodies(rigidBodies& bodies) const
 {
-    IOobject bIO(file("rigidBodies", IOobject::MUST_READ));
-    if (!bIO.typeHeaderOk<IOdictionary>(true)) return false;
+    const IOobject bIO(file("rigidBodies"));
+    if (!listed<IOdictionary>(bIO)) return false;
     bodies.readState(IOdictionary(bIO));
     Info<< "Restart: read the rigid bodies' state from " << bIO.objectPath()
         << nl;
