@@ -131,6 +131,258 @@ label findRoot(std::vector<label>& parent, label i)
     return i;
 }
 
+//- The wall segments of the mesh (all but free-surface ones), their
+//  straight runs and the wall segments at each node
+struct wallGeometry
+{
+    //- Wall segments in mesh order
+    std::vector<label> segments;
+
+    //- Kind of the particles behind each segment (fluid: not a wall)
+    std::vector<Foam::particleSet::kind> kind;
+
+    //- Outward unit normal and unit tangent of each segment
+    std::vector<scalar> normal, tangent;
+
+    //- The wall segments of each node
+    std::unordered_map<label, std::vector<label>> nodeSegments;
+
+    //- Union-find forest of the straight runs (root: the run's segment)
+    std::vector<label> runParent;
+};
+
+
+//- Candidate dummy particles: (x, y, kind) in order of creation
+struct wallCandidates
+{
+    std::vector<scalar> positions;
+    std::vector<Foam::particleSet::kind> kind;
+
+    void add(const scalar px, const scalar py, const Foam::particleSet::kind k)
+    {
+        positions.push_back(px);
+        positions.push_back(py);
+        kind.push_back(k);
+    }
+};
+
+
+//- True if two wall segments are of the same kind and parallel (the same
+//  outward normal)
+bool parallel(const wallGeometry& walls, const label s1, const label s2)
+{
+    const std::vector<scalar>& normal = walls.normal;
+    return
+        walls.kind[s1] == walls.kind[s2]
+     && normal[2*s1]*normal[2*s2] + normal[2*s1+1]*normal[2*s2+1]
+      > 1 - 1e-9;
+}
+
+
+//- Wall segments: kind, outward unit normal and unit tangent
+void findWallSegments
+(
+    const Foam::triMesh& mesh,
+    const Foam::List<Foam::patchType>& patchTypes,
+    wallGeometry& walls
+)
+{
+    using Foam::particleSet;
+    using Foam::patchType;
+
+    const std::vector<scalar>& x = mesh.points();
+    const std::vector<label>& seg = mesh.segments();
+    const label nSeg = mesh.nSegments();
+
+    walls.kind.assign(nSeg, particleSet::kind::fluid);
+    walls.normal.assign(2*nSeg, 0);
+    walls.tangent.assign(2*nSeg, 0);
+    for (label s = 0; s < nSeg; ++s)
+    {
+        const patchType type = patchTypes[mesh.segmentPatch()[s]];
+        if (type == patchType::freeSurface) continue;
+        walls.kind[s] =
+            type == patchType::slipWall
+          ? particleSet::kind::slipWall
+          : particleSet::kind::wall;
+        walls.segments.push_back(s);
+
+        const scalar* a = &x[2*seg[2*s]];
+        const scalar* b = &x[2*seg[2*s + 1]];
+        const scalar len = std::hypot(b[0] - a[0], b[1] - a[1]);
+        scalar tx = (b[0] - a[0])/len, ty = (b[1] - a[1])/len;
+        scalar nx = ty, ny = -tx;
+
+        // Outward: away from the centroid of the segment's triangle
+        const label e = mesh.segmentEdge()[s];
+        const label t = mesh.edgeTriangles()[2*e];
+        scalar cx = 0, cy = 0;
+        for (int k = 0; k < 3; ++k)
+        {
+            cx += x[2*mesh.triangles()[3*t + k]]/3;
+            cy += x[2*mesh.triangles()[3*t + k] + 1]/3;
+        }
+        if (nx*(0.5*(a[0] + b[0]) - cx) + ny*(0.5*(a[1] + b[1]) - cy) < 0)
+        {
+            nx = -nx;
+            ny = -ny;
+        }
+        walls.normal[2*s] = nx; walls.normal[2*s + 1] = ny;
+        walls.tangent[2*s] = tx; walls.tangent[2*s + 1] = ty;
+    }
+}
+
+
+//- Segments of each node, and the straight runs: wall segments joined at
+//  nodes with the same normal
+void findStraightRuns(const Foam::triMesh& mesh, wallGeometry& walls)
+{
+    const std::vector<label>& seg = mesh.segments();
+    for (const label s : walls.segments)
+    {
+        walls.nodeSegments[seg[2*s]].push_back(s);
+        walls.nodeSegments[seg[2*s + 1]].push_back(s);
+    }
+
+    std::vector<label>& parent = walls.runParent;
+    parent.resize(mesh.nSegments());
+    std::iota(parent.begin(), parent.end(), 0);
+    for (const auto& ns : walls.nodeSegments)
+    {
+        const std::vector<label>& s = ns.second;
+        for (size_t i = 0; i < s.size(); ++i)
+        {
+            for (size_t j = i + 1; j < s.size(); ++j)
+            {
+                if (parallel(walls, s[i], s[j]))
+                {
+                    parent[findRoot(parent, s[i])] = findRoot(parent, s[j]);
+                }
+            }
+        }
+    }
+}
+
+
+//- Each straight run: candidates evenly spaced along its extent, nLayers
+//  deep
+void appendRunCandidates
+(
+    const Foam::triMesh& mesh,
+    wallGeometry& walls,
+    const scalar spacing,
+    const label nLayers,
+    wallCandidates& candidates
+)
+{
+    const std::vector<scalar>& x = mesh.points();
+    const std::vector<label>& seg = mesh.segments();
+    std::vector<label>& parent = walls.runParent;
+    const std::vector<scalar>& normal = walls.normal;
+    const std::vector<scalar>& tangent = walls.tangent;
+
+    std::unordered_map<label, std::pair<scalar, scalar>> runExtent;
+    for (const label s : walls.segments)
+    {
+        const label r = findRoot(parent, s);
+        const scalar tx = tangent[2*r], ty = tangent[2*r + 1];
+        for (int k = 0; k < 2; ++k)
+        {
+            const scalar* p = &x[2*seg[2*s + k]];
+            const scalar u = p[0]*tx + p[1]*ty;
+            auto it = runExtent.find(r);
+            if (it == runExtent.end()) runExtent[r] = {u, u};
+            else
+            {
+                it->second.first = std::min(it->second.first, u);
+                it->second.second = std::max(it->second.second, u);
+            }
+        }
+    }
+    for (const label s : walls.segments)
+    {
+        if (findRoot(parent, s) != s) continue;
+        const auto ext = runExtent[s];
+        const scalar tx = tangent[2*s], ty = tangent[2*s + 1];
+        const scalar nx = normal[2*s], ny = normal[2*s + 1];
+        // The line of the run: offset along the normal
+        const scalar* p0 = &x[2*seg[2*s]];
+        const scalar d = p0[0]*nx + p0[1]*ny;
+        const scalar length = ext.second - ext.first;
+        const label n = std::max(label(1), label(std::lround(length/spacing)));
+        for (label layer = 0; layer < nLayers; ++layer)
+        {
+            const scalar off = d + (layer + 0.5)*spacing;
+            for (label k = 0; k < n; ++k)
+            {
+                const scalar u = ext.first + (k + 0.5)*length/n;
+                candidates.add(u*tx + off*nx, u*ty + off*ny, walls.kind[s]);
+            }
+        }
+    }
+}
+
+
+//- Convex corners between runs: candidates filling the gap between their
+//  layers, node + (a + 1/2) spacing n_1 + (b + 1/2) spacing n_2
+void appendCornerCandidates
+(
+    const Foam::triMesh& mesh,
+    const wallGeometry& walls,
+    const scalar spacing,
+    const label nLayers,
+    wallCandidates& candidates
+)
+{
+    using Foam::particleSet;
+
+    const std::vector<scalar>& x = mesh.points();
+    const std::vector<label>& seg = mesh.segments();
+    const std::vector<scalar>& normal = walls.normal;
+    const std::vector<particleSet::kind>& segKind = walls.kind;
+
+    for (const auto& ns : walls.nodeSegments)
+    {
+        const scalar* p = &x[2*ns.first];
+        const std::vector<label>& s = ns.second;
+        for (size_t i = 0; i < s.size(); ++i)
+        {
+            for (size_t j = 0; j < s.size(); ++j)
+            {
+                const label s1 = s[i], s2 = s[j];
+                if (i == j || parallel(walls, s1, s2)) continue;
+                // Direction along s1 away from the node
+                const label other = seg[2*s1] == ns.first ? seg[2*s1 + 1] : seg[2*s1];
+                const scalar ax = x[2*other] - p[0], ay = x[2*other + 1] - p[1];
+                const scalar n2x = normal[2*s2], n2y = normal[2*s2 + 1];
+                if (i > j || ax*n2x + ay*n2y >= -1e-9*std::hypot(ax, ay))
+                {
+                    continue;
+                }
+                const scalar n1x = normal[2*s1], n1y = normal[2*s1 + 1];
+                const particleSet::kind k =
+                    segKind[s1] == particleSet::kind::wall
+                 || segKind[s2] == particleSet::kind::wall
+                  ? particleSet::kind::wall
+                  : particleSet::kind::slipWall;
+                for (label a = 0; a < nLayers; ++a)
+                {
+                    for (label b = 0; b < nLayers; ++b)
+                    {
+                        candidates.add
+                        (
+                            p[0] + (a + 0.5)*spacing*n1x + (b + 0.5)*spacing*n2x,
+                            p[1] + (a + 0.5)*spacing*n1y + (b + 0.5)*spacing*n2y,
+                            k
+                        );
+                    }
+                }
+            }
+        }
+    }
+}
+
+
 } // End anonymous namespace
 
 
@@ -155,171 +407,16 @@ Foam::label Foam::appendWallParticles
     }
 
     const std::vector<scalar>& x = mesh.points();
-    const std::vector<label>& seg = mesh.segments();
-    const label nSeg = mesh.nSegments();
 
-    // Wall segments: kind, outward unit normal and unit tangent
-    std::vector<label> wallSeg;
-    std::vector<particleSet::kind> segKind(nSeg, particleSet::kind::fluid);
-    std::vector<scalar> normal(2*nSeg, 0), tangent(2*nSeg, 0);
-    for (label s = 0; s < nSeg; ++s)
-    {
-        const patchType type = patchTypes[mesh.segmentPatch()[s]];
-        if (type == patchType::freeSurface) continue;
-        segKind[s] =
-            type == patchType::slipWall
-          ? particleSet::kind::slipWall
-          : particleSet::kind::wall;
-        wallSeg.push_back(s);
+    wallGeometry walls;
+    findWallSegments(mesh, patchTypes, walls);
+    findStraightRuns(mesh, walls);
 
-        const scalar* a = &x[2*seg[2*s]];
-        const scalar* b = &x[2*seg[2*s + 1]];
-        const scalar len = std::hypot(b[0] - a[0], b[1] - a[1]);
-        scalar tx = (b[0] - a[0])/len, ty = (b[1] - a[1])/len;
-        scalar nx = ty, ny = -tx;
-
-        // Outward: away from the centroid of the segment's triangle
-        const label e = mesh.segmentEdge()[s];
-        const label t = mesh.edgeTriangles()[2*e];
-        scalar cx = 0, cy = 0;
-        for (int k = 0; k < 3; ++k)
-        {
-            cx += x[2*mesh.triangles()[3*t + k]]/3;
-            cy += x[2*mesh.triangles()[3*t + k] + 1]/3;
-        }
-        if (nx*(0.5*(a[0] + b[0]) - cx) + ny*(0.5*(a[1] + b[1]) - cy) < 0)
-        {
-            nx = -nx;
-            ny = -ny;
-        }
-        normal[2*s] = nx; normal[2*s + 1] = ny;
-        tangent[2*s] = tx; tangent[2*s + 1] = ty;
-    }
-
-    // Segments of each node, to join straight runs and find corners
-    std::unordered_map<label, std::vector<label>> nodeSegs;
-    for (const label s : wallSeg)
-    {
-        nodeSegs[seg[2*s]].push_back(s);
-        nodeSegs[seg[2*s + 1]].push_back(s);
-    }
-    auto parallel = [&](const label s1, const label s2)
-    {
-        return
-            segKind[s1] == segKind[s2]
-         && normal[2*s1]*normal[2*s2] + normal[2*s1+1]*normal[2*s2+1]
-          > 1 - 1e-9;
-    };
-
-    // Straight runs: wall segments joined at nodes with the same normal
-    std::vector<label> parent(nSeg);
-    std::iota(parent.begin(), parent.end(), 0);
-    for (const auto& ns : nodeSegs)
-    {
-        const std::vector<label>& s = ns.second;
-        for (size_t i = 0; i < s.size(); ++i)
-        {
-            for (size_t j = i + 1; j < s.size(); ++j)
-            {
-                if (parallel(s[i], s[j]))
-                {
-                    parent[findRoot(parent, s[i])] = findRoot(parent, s[j]);
-                }
-            }
-        }
-    }
-
-    // Candidate particles: (x, y, kind) in order of creation
-    std::vector<scalar> cand;
-    std::vector<particleSet::kind> candKind;
-    auto add = [&](const scalar px, const scalar py, const particleSet::kind k)
-    {
-        cand.push_back(px);
-        cand.push_back(py);
-        candKind.push_back(k);
-    };
-
-    // Each run: evenly spaced along its extent, nLayers deep
-    std::unordered_map<label, std::pair<scalar, scalar>> runExtent;
-    for (const label s : wallSeg)
-    {
-        const label r = findRoot(parent, s);
-        const scalar tx = tangent[2*r], ty = tangent[2*r + 1];
-        for (int k = 0; k < 2; ++k)
-        {
-            const scalar* p = &x[2*seg[2*s + k]];
-            const scalar u = p[0]*tx + p[1]*ty;
-            auto it = runExtent.find(r);
-            if (it == runExtent.end()) runExtent[r] = {u, u};
-            else
-            {
-                it->second.first = std::min(it->second.first, u);
-                it->second.second = std::max(it->second.second, u);
-            }
-        }
-    }
-    for (const label s : wallSeg)
-    {
-        if (findRoot(parent, s) != s) continue;
-        const auto ext = runExtent[s];
-        const scalar tx = tangent[2*s], ty = tangent[2*s + 1];
-        const scalar nx = normal[2*s], ny = normal[2*s + 1];
-        // The line of the run: offset along the normal
-        const scalar* p0 = &x[2*seg[2*s]];
-        const scalar d = p0[0]*nx + p0[1]*ny;
-        const scalar length = ext.second - ext.first;
-        const label n = std::max(label(1), label(std::lround(length/spacing)));
-        for (label layer = 0; layer < nLayers; ++layer)
-        {
-            const scalar off = d + (layer + 0.5)*spacing;
-            for (label k = 0; k < n; ++k)
-            {
-                const scalar u = ext.first + (k + 0.5)*length/n;
-                add(u*tx + off*nx, u*ty + off*ny, segKind[s]);
-            }
-        }
-    }
-
-    // Convex corners between runs: fill the gap between their layers
-    for (const auto& ns : nodeSegs)
-    {
-        const scalar* p = &x[2*ns.first];
-        const std::vector<label>& s = ns.second;
-        for (size_t i = 0; i < s.size(); ++i)
-        {
-            for (size_t j = 0; j < s.size(); ++j)
-            {
-                const label s1 = s[i], s2 = s[j];
-                if (i == j || parallel(s1, s2)) continue;
-                // Direction along s1 away from the node
-                const label other = seg[2*s1] == ns.first ? seg[2*s1 + 1] : seg[2*s1];
-                const scalar ax = x[2*other] - p[0], ay = x[2*other + 1] - p[1];
-                const scalar n2x = normal[2*s2], n2y = normal[2*s2 + 1];
-                if (i > j || ax*n2x + ay*n2y >= -1e-9*std::hypot(ax, ay))
-                {
-                    continue;
-                }
-                const scalar n1x = normal[2*s1], n1y = normal[2*s1 + 1];
-                const particleSet::kind k =
-                    segKind[s1] == particleSet::kind::wall
-                 || segKind[s2] == particleSet::kind::wall
-                  ? particleSet::kind::wall
-                  : particleSet::kind::slipWall;
-                for (label a = 0; a < nLayers; ++a)
-                {
-                    for (label b = 0; b < nLayers; ++b)
-                    {
-                        add
-                        (
-                            p[0] + (a + 0.5)*spacing*n1x + (b + 0.5)*spacing*n2x,
-                            p[1] + (a + 0.5)*spacing*n1y + (b + 0.5)*spacing*n2y,
-                            k
-                        );
-                    }
-                }
-            }
-        }
-    }
+    wallCandidates candidates;
+    appendRunCandidates(mesh, walls, spacing, nLayers, candidates);
+    appendCornerCandidates(mesh, walls, spacing, nLayers, candidates);
+    const std::vector<scalar>& cand = candidates.positions;
+    const std::vector<particleSet::kind>& candKind = candidates.kind;
 
     // Keep candidates outside the mesh and not too close to a kept one
     const meshLocator locator(x, mesh.triangles());

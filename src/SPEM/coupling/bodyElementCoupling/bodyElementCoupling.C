@@ -4,72 +4,112 @@
 #include <algorithm>
 #include <cmath>
 
-// * * * * * * * * * * * * * * Static Member Functions * * * * * * * * * * * //
+// * * * * * * * * * * * * * * * Local Functions * * * * * * * * * * * * * * //
 
-void Foam::bodyElementCoupling::smoothBand
-(
-    triMesh& mesh,
-    const rigidBodies& bodies,
-    const std::vector<bool>& fluid,
-    const std::vector<bool>& fixedNode,
-    const std::vector<label>& outFor,
-    const std::vector<label>& nodeBody,
-    const std::vector<scalar>& area0,
-    const scalar snapDistance
-)
+namespace
 {
-    // The band: free fluid nodes within bandWidth of a sliding body, and
-    // the nodes on the bodies (which stay on them)
-    const scalar bandWidth = 12*snapDistance;     // three element spacings
-    constexpr label nSweeps = 20;
-    constexpr scalar minAreaFraction = 0.2;
 
-    const label nPoints = mesh.nPoints(), nTri = mesh.nTriangles();
-    const std::vector<label>& tri = mesh.triangles();
-    const std::vector<label>& start = mesh.nodeTriangleStart();
-    const std::vector<label>& around = mesh.nodeTriangles();
-    auto kept = [&](const label t) { return fluid[t] && outFor[t] < 0; };
+using namespace Foam;
 
-    std::vector<label> band;
-    for (label n = 0; n < nPoints; ++n)
+//- The smoothing of the band of fluid nodes round the sliding bodies
+//  (bodyElementCoupling::smoothBand): the mesh, the bodies and what
+//  prepareMesh decided, shared by its steps
+class bandSmoother
+{
+    triMesh& mesh_;
+    const rigidBodies& bodies_;
+    const std::vector<bool>& fluid_;
+    const std::vector<label>& outFor_;
+    const std::vector<label>& nodeBody_;
+    const std::vector<scalar>& area0_;
+    const scalar snapDistance_;
+
+public:
+
+    //- Sweeps of the Gauss-Seidel smoothing
+    static constexpr label nSweeps = 20;
+
+    //- A triangle must keep this fraction of its area
+    static constexpr scalar minAreaFraction = 0.2;
+
+    bandSmoother
+    (
+        triMesh& mesh,
+        const rigidBodies& bodies,
+        const std::vector<bool>& fluid,
+        const std::vector<label>& outFor,
+        const std::vector<label>& nodeBody,
+        const std::vector<scalar>& area0,
+        const scalar snapDistance
+    )
+    :
+        mesh_(mesh),
+        bodies_(bodies),
+        fluid_(fluid),
+        outFor_(outFor),
+        nodeBody_(nodeBody),
+        area0_(area0),
+        snapDistance_(snapDistance)
+    {}
+
+    //- True if triangle t is a fluid element kept in the model
+    bool kept(const label t) const
     {
-        if (fixedNode[n]) continue;
-        bool onlyKeptFluid = true, anyKept = false;
-        for (label j = start[n]; j < start[n + 1]; ++j)
+        return fluid_[t] && outFor_[t] < 0;
+    }
+
+    //- The band: free fluid nodes within bandWidth of a sliding body, and
+    //  the nodes on the bodies (which stay on them)
+    std::vector<label> band(const std::vector<bool>& fixedNode) const
+    {
+        const scalar bandWidth = 12*snapDistance_;     // three element spacings
+        const label nPoints = mesh_.nPoints();
+        const std::vector<label>& start = mesh_.nodeTriangleStart();
+        const std::vector<label>& around = mesh_.nodeTriangles();
+
+        std::vector<label> band;
+        for (label n = 0; n < nPoints; ++n)
         {
-            const label t = around[j]/3;
-            anyKept = anyKept || kept(t);
-            onlyKeptFluid = onlyKeptFluid && (kept(t) || (fluid[t] && outFor[t] >= 0));
-        }
-        if (!anyKept || !onlyKeptFluid) continue;
-        if (nodeBody[n] >= 0)
-        {
-            band.push_back(n);
-            continue;
-        }
-        const scalar* p = &mesh.points()[2*n];
-        forAll(bodies, b)
-        {
-            if
-            (
-                bodies[b].elementsContact() == rigidBody::elementContact::slide
-             && bodies[b].signedDistance(p[0], p[1]) < bandWidth
-            )
+            if (fixedNode[n]) continue;
+            bool onlyKeptFluid = true, anyKept = false;
+            for (label j = start[n]; j < start[n + 1]; ++j)
+            {
+                const label t = around[j]/3;
+                anyKept = anyKept || kept(t);
+                onlyKeptFluid = onlyKeptFluid && (kept(t) || (fluid_[t] && outFor_[t] >= 0));
+            }
+            if (!anyKept || !onlyKeptFluid) continue;
+            if (nodeBody_[n] >= 0)
             {
                 band.push_back(n);
-                break;
+                continue;
+            }
+            const scalar* p = &mesh_.points()[2*n];
+            forAll(bodies_, b)
+            {
+                if
+                (
+                    bodies_[b].elementsContact() == rigidBody::elementContact::slide
+                 && bodies_[b].signedDistance(p[0], p[1]) < bandWidth
+                )
+                {
+                    band.push_back(n);
+                    break;
+                }
             }
         }
+        return band;
     }
-    if (band.empty()) return;
 
-    const std::vector<scalar> before = mesh.points();
-    // Smallest interior angle of the kept triangles round node n with n
-    // at (px, py); -1 if one of them keeps less than minAreaFraction of
-    // its area
-    auto quality = [&](const label n, const scalar px, const scalar py)
+    //- Smallest interior angle of the kept triangles round node n with n
+    //  at (px, py); -1 if one of them keeps less than minAreaFraction of
+    //  its area
+    scalar quality(const label n, const scalar px, const scalar py) const
     {
-        const std::vector<scalar>& x = mesh.points();
+        const std::vector<label>& tri = mesh_.triangles();
+        const std::vector<label>& start = mesh_.nodeTriangleStart();
+        const std::vector<label>& around = mesh_.nodeTriangles();
+        const std::vector<scalar>& x = mesh_.points();
         scalar worst = constant::mathematical::pi;
         for (label j = start[n]; j < start[n + 1]; ++j)
         {
@@ -85,7 +125,7 @@ void Foam::bodyElementCoupling::smoothBand
             const scalar twiceArea =
                 (p[1][0] - p[0][0])*(p[2][1] - p[0][1])
               - (p[2][0] - p[0][0])*(p[1][1] - p[0][1]);
-            if (0.5*twiceArea < minAreaFraction*area0[t]) return scalar(-1);
+            if (0.5*twiceArea < minAreaFraction*area0_[t]) return scalar(-1);
             for (label a = 0; a < 3; ++a)
             {
                 const scalar* o = p[a];
@@ -101,119 +141,109 @@ void Foam::bodyElementCoupling::smoothBand
             }
         }
         return worst;
-    };
-
-    // Gauss-Seidel sweeps: each node moves toward the mean of its
-    // neighbours (a node on a body stays on it) as far as that raises the
-    // smallest angle round it
-    for (label sweep = 0; sweep < nSweeps; ++sweep)
-    {
-        for (const label n : band)
-        {
-            const std::vector<scalar>& x = mesh.points();
-            scalar sx = 0, sy = 0, w = 0;
-            for (label j = start[n]; j < start[n + 1]; ++j)
-            {
-                const label t = around[j]/3, a = around[j] % 3;
-                if (!kept(t)) continue;
-                for (const label o : {tri[3*t + (a + 1) % 3], tri[3*t + (a + 2) % 3]})
-                {
-                    sx += x[2*o];
-                    sy += x[2*o + 1];
-                    w += 1;
-                }
-            }
-            if (w == 0) continue;
-            const scalar x0 = x[2*n], y0 = x[2*n + 1];
-            scalar best = quality(n, x0, y0), bestX = x0, bestY = y0;
-            // Toward the mean, and small steps round the node that shrink
-            // with the sweeps (a hill climb on the smallest angle)
-            const scalar step =
-                0.8*snapDistance*scalar(nSweeps - sweep)/nSweeps;
-            const scalar candidates[11][2] =
-            {
-                {x0 + (sx/w - x0), y0 + (sy/w - y0)},
-                {x0 + 0.5*(sx/w - x0), y0 + 0.5*(sy/w - y0)},
-                {x0 + 0.25*(sx/w - x0), y0 + 0.25*(sy/w - y0)},
-                {x0 + step, y0}, {x0 - step, y0},
-                {x0, y0 + step}, {x0, y0 - step},
-                {x0 + 0.7*step, y0 + 0.7*step}, {x0 - 0.7*step, y0 - 0.7*step},
-                {x0 + 0.7*step, y0 - 0.7*step}, {x0 - 0.7*step, y0 + 0.7*step}
-            };
-            for (const auto& candidate : candidates)
-            {
-                scalar cx = candidate[0], cy = candidate[1];
-                if (nodeBody[n] >= 0)
-                {
-                    vector2D closest, normal;
-                    bodies[nodeBody[n]].signedDistance(cx, cy, closest, normal);
-                    cx = closest.x();
-                    cy = closest.y();
-                }
-                else
-                {
-                    // A free node stays as far from the bodies as the
-                    // snapping left it: nearer, it would attach at once
-                    bool tooNear = false;
-                    forAll(bodies, b)
-                    {
-                        tooNear = tooNear
-                         || bodies[b].signedDistance(cx, cy) < snapDistance;
-                    }
-                    if (tooNear) continue;
-                }
-                const scalar q = quality(n, cx, cy);
-                if (q > best)
-                {
-                    best = q;
-                    bestX = cx;
-                    bestY = cy;
-                }
-            }
-            mesh.movePoint(n, bestX, bestY);
-        }
     }
 
-    // Smoothing must not spoil a triangle; if it does, the snapped mesh
-    // stays as it was
-    for (label t = 0; t < nTri; ++t)
+    //- One Gauss-Seidel step of node n in the given sweep: toward the mean
+    //  of its neighbours (a node on a body stays on it) as far as that
+    //  raises the smallest angle round it
+    void relaxNode(const label n, const label sweep)
     {
-        if (kept(t) && mesh.triangleArea(t) < minAreaFraction*area0[t])
+        const std::vector<label>& tri = mesh_.triangles();
+        const std::vector<label>& start = mesh_.nodeTriangleStart();
+        const std::vector<label>& around = mesh_.nodeTriangles();
+        const std::vector<scalar>& x = mesh_.points();
+        scalar sx = 0, sy = 0, w = 0;
+        for (label j = start[n]; j < start[n + 1]; ++j)
         {
-            for (const label n : band)
+            const label t = around[j]/3, a = around[j] % 3;
+            if (!kept(t)) continue;
+            for (const label o : {tri[3*t + (a + 1) % 3], tri[3*t + (a + 2) % 3]})
             {
-                mesh.movePoint(n, before[2*n], before[2*n + 1]);
+                sx += x[2*o];
+                sy += x[2*o + 1];
+                w += 1;
             }
-            return;
         }
+        if (w == 0) return;
+        const scalar x0 = x[2*n], y0 = x[2*n + 1];
+        scalar best = quality(n, x0, y0), bestX = x0, bestY = y0;
+        // Toward the mean, and small steps round the node that shrink
+        // with the sweeps (a hill climb on the smallest angle)
+        const scalar step =
+            0.8*snapDistance_*scalar(nSweeps - sweep)/nSweeps;
+        const scalar candidates[11][2] =
+        {
+            {x0 + (sx/w - x0), y0 + (sy/w - y0)},
+            {x0 + 0.5*(sx/w - x0), y0 + 0.5*(sy/w - y0)},
+            {x0 + 0.25*(sx/w - x0), y0 + 0.25*(sy/w - y0)},
+            {x0 + step, y0}, {x0 - step, y0},
+            {x0, y0 + step}, {x0, y0 - step},
+            {x0 + 0.7*step, y0 + 0.7*step}, {x0 - 0.7*step, y0 - 0.7*step},
+            {x0 + 0.7*step, y0 - 0.7*step}, {x0 - 0.7*step, y0 + 0.7*step}
+        };
+        for (const auto& candidate : candidates)
+        {
+            scalar cx = candidate[0], cy = candidate[1];
+            if (nodeBody_[n] >= 0)
+            {
+                vector2D closest, normal;
+                bodies_[nodeBody_[n]].signedDistance(cx, cy, closest, normal);
+                cx = closest.x();
+                cy = closest.y();
+            }
+            else
+            {
+                // A free node stays as far from the bodies as the
+                // snapping left it: nearer, it would attach at once
+                bool tooNear = false;
+                forAll(bodies_, b)
+                {
+                    tooNear = tooNear
+                     || bodies_[b].signedDistance(cx, cy) < snapDistance_;
+                }
+                if (tooNear) continue;
+            }
+            const scalar q = quality(n, cx, cy);
+            if (q > best)
+            {
+                best = q;
+                bestX = cx;
+                bestY = cy;
+            }
+        }
+        mesh_.movePoint(n, bestX, bestY);
     }
-}
 
+    //- True if a kept triangle has less than minAreaFraction of its area
+    bool spoiled() const
+    {
+        const label nTri = mesh_.nTriangles();
+        for (label t = 0; t < nTri; ++t)
+        {
+            if (kept(t) && mesh_.triangleArea(t) < minAreaFraction*area0_[t])
+            {
+                return true;
+            }
+        }
+        return false;
+    }
+};
 
-Foam::bodyElementCoupling::preparedMesh
-Foam::bodyElementCoupling::prepareMesh
+//- The body each fluid triangle is left out for (-1: kept): the one its
+//  centroid is in, the water the body displaces; area0: the areas of the
+//  fluid triangles
+std::vector<label> displacedTriangles
 (
-    triMesh& mesh,
+    const triMesh& mesh,
     const rigidBodies& bodies,
     const std::vector<bool>& fluid,
-    const std::vector<bool>& fixedNode,
-    const scalar snapDistance
+    std::vector<scalar>& area0
 )
 {
-    // A triangle snapped to less than this fraction of its area is left out
-    constexpr scalar minAreaFraction = 0.2;
-    // Rounds of snapping and leaving out; a mesh needs two or three
-    constexpr label maxRounds = 50;
-
     const label nTri = mesh.nTriangles();
     const std::vector<label>& tri = mesh.triangles();
-
-    // The body each triangle is left out for (-1: kept), each node is on
-    std::vector<label> outFor(nTri, -1), nodeBody(mesh.nPoints(), -1);
-    std::vector<scalar> area0(nTri, 0);
-    const bool anySlide = bodies.anySliding();
-
     const std::vector<scalar>& X = mesh.points();
+    std::vector<label> outFor(nTri, -1);
     for (label t = 0; t < nTri; ++t)
     {
         if (!fluid[t]) continue;
@@ -230,44 +260,178 @@ Foam::bodyElementCoupling::prepareMesh
             }
         }
     }
+    return outFor;
+}
 
+
+//- The sliding body each node is to be snapped to (-1: none): the free
+//  nodes of kept triangles that are inside a sliding body or on a triangle
+//  left out for one
+std::vector<label> snapTargets
+(
+    const triMesh& mesh,
+    const rigidBodies& bodies,
+    const std::vector<bool>& fluid,
+    const std::vector<label>& outFor,
+    const scalar snapDistance
+)
+{
+    const label nTri = mesh.nTriangles();
+    const std::vector<label>& tri = mesh.triangles();
+    const std::vector<scalar>& X = mesh.points();
+    std::vector<label> target(mesh.nPoints(), -1);
+    for (label t = 0; t < nTri; ++t)
+    {
+        if (!fluid[t] || outFor[t] < 0) continue;
+        const label b = outFor[t];
+        if (bodies[b].elementsContact() != rigidBody::elementContact::slide)
+        {
+            continue;
+        }
+        for (label a = 0; a < 3; ++a) target[tri[3*t + a]] = b;
+    }
+    for (label t = 0; t < nTri; ++t)
+    {
+        if (!fluid[t] || outFor[t] >= 0) continue;
+        for (label a = 0; a < 3; ++a)
+        {
+            const label n = tri[3*t + a];
+            forAll(bodies, b)
+            {
+                if
+                (
+                    bodies[b].elementsContact()
+                 == rigidBody::elementContact::slide
+                 && bodies[b].signedDistance(X[2*n], X[2*n + 1])
+                  < snapDistance
+                )
+                {
+                    target[n] = b;
+                }
+            }
+        }
+    }
+    return target;
+}
+
+
+//- Leave out the kept triangles the moves flattened, inverted or closed
+//  onto the surface (all three nodes on a body); true if any
+bool leaveOutFlattened
+(
+    const triMesh& mesh,
+    const std::vector<bool>& fluid,
+    const std::vector<label>& nodeBody,
+    const std::vector<scalar>& area0,
+    std::vector<label>& outFor
+)
+{
+    // A triangle snapped to less than this fraction of its area is left out
+    constexpr scalar minAreaFraction = 0.2;
+
+    const label nTri = mesh.nTriangles();
+    const std::vector<label>& tri = mesh.triangles();
+    bool leftOut = false;
+    for (label t = 0; t < nTri; ++t)
+    {
+        if (!fluid[t] || outFor[t] >= 0) continue;
+        const label* n = &tri[3*t];
+        const label nOn =
+            (nodeBody[n[0]] >= 0) + (nodeBody[n[1]] >= 0)
+          + (nodeBody[n[2]] >= 0);
+        if (nOn == 0) continue;
+        if (nOn == 3 || mesh.triangleArea(t) < minAreaFraction*area0[t])
+        {
+            for (label a = 0; a < 3; ++a)
+            {
+                if (nodeBody[n[a]] >= 0) outFor[t] = nodeBody[n[a]];
+            }
+            leftOut = true;
+        }
+    }
+    return leftOut;
+}
+
+
+} // End anonymous namespace
+
+
+// * * * * * * * * * * * * * * Static Member Functions * * * * * * * * * * * //
+
+void Foam::bodyElementCoupling::smoothBand
+(
+    triMesh& mesh,
+    const rigidBodies& bodies,
+    const std::vector<bool>& fluid,
+    const std::vector<bool>& fixedNode,
+    const std::vector<label>& outFor,
+    const std::vector<label>& nodeBody,
+    const std::vector<scalar>& area0,
+    const scalar snapDistance
+)
+{
+    bandSmoother smoother
+    (
+        mesh, bodies, fluid, outFor, nodeBody, area0, snapDistance
+    );
+    const std::vector<label> band = smoother.band(fixedNode);
+    if (band.empty()) return;
+
+    const std::vector<scalar> before = mesh.points();
+
+    // Gauss-Seidel sweeps: each node moves toward the mean of its
+    // neighbours (a node on a body stays on it) as far as that raises the
+    // smallest angle round it
+    for (label sweep = 0; sweep < bandSmoother::nSweeps; ++sweep)
+    {
+        for (const label n : band)
+        {
+            smoother.relaxNode(n, sweep);
+        }
+    }
+
+    // Smoothing must not spoil a triangle; if it does, the snapped mesh
+    // stays as it was
+    if (smoother.spoiled())
+    {
+        for (const label n : band)
+        {
+            mesh.movePoint(n, before[2*n], before[2*n + 1]);
+        }
+    }
+}
+
+
+Foam::bodyElementCoupling::preparedMesh
+Foam::bodyElementCoupling::prepareMesh
+(
+    triMesh& mesh,
+    const rigidBodies& bodies,
+    const std::vector<bool>& fluid,
+    const std::vector<bool>& fixedNode,
+    const scalar snapDistance
+)
+{
+    // Rounds of snapping and leaving out; a mesh needs two or three
+    constexpr label maxRounds = 50;
+
+    const label nTri = mesh.nTriangles();
+    const std::vector<label>& tri = mesh.triangles();
+
+    // The body each triangle is left out for (-1: kept), each node is on
+    std::vector<scalar> area0(nTri, 0);
+    std::vector<label> outFor = displacedTriangles(mesh, bodies, fluid, area0);
+    std::vector<label> nodeBody(mesh.nPoints(), -1);
+    const bool anySlide = bodies.anySliding();
+
+    const std::vector<scalar>& X = mesh.points();
     preparedMesh result;
     for (label round = 0; anySlide && round < maxRounds; ++round)
     {
         // Move the free nodes of kept triangles that are inside a sliding
         // body or on a triangle left out for one
-        std::vector<label> target(mesh.nPoints(), -1);
-        for (label t = 0; t < nTri; ++t)
-        {
-            if (!fluid[t] || outFor[t] < 0) continue;
-            const label b = outFor[t];
-            if (bodies[b].elementsContact() != rigidBody::elementContact::slide)
-            {
-                continue;
-            }
-            for (label a = 0; a < 3; ++a) target[tri[3*t + a]] = b;
-        }
-        for (label t = 0; t < nTri; ++t)
-        {
-            if (!fluid[t] || outFor[t] >= 0) continue;
-            for (label a = 0; a < 3; ++a)
-            {
-                const label n = tri[3*t + a];
-                forAll(bodies, b)
-                {
-                    if
-                    (
-                        bodies[b].elementsContact()
-                     == rigidBody::elementContact::slide
-                     && bodies[b].signedDistance(X[2*n], X[2*n + 1])
-                      < snapDistance
-                    )
-                    {
-                        target[n] = b;
-                    }
-                }
-            }
-        }
+        const std::vector<label> target =
+            snapTargets(mesh, bodies, fluid, outFor, snapDistance);
         bool moved = false;
         for (label t = 0; t < nTri; ++t)
         {
@@ -291,24 +455,8 @@ Foam::bodyElementCoupling::prepareMesh
 
         // Leave out what the moves flattened, inverted or closed onto the
         // surface
-        bool leftOut = false;
-        for (label t = 0; t < nTri; ++t)
-        {
-            if (!fluid[t] || outFor[t] >= 0) continue;
-            const label* n = &tri[3*t];
-            const label nOn =
-                (nodeBody[n[0]] >= 0) + (nodeBody[n[1]] >= 0)
-              + (nodeBody[n[2]] >= 0);
-            if (nOn == 0) continue;
-            if (nOn == 3 || mesh.triangleArea(t) < minAreaFraction*area0[t])
-            {
-                for (label a = 0; a < 3; ++a)
-                {
-                    if (nodeBody[n[a]] >= 0) outFor[t] = nodeBody[n[a]];
-                }
-                leftOut = true;
-            }
-        }
+        const bool leftOut =
+            leaveOutFlattened(mesh, fluid, nodeBody, area0, outFor);
         if (!moved && !leftOut) break;
         if (round == maxRounds - 1)
         {

@@ -44,6 +44,198 @@ namespace
             return it == cells_.end() ? nullptr : &it->second;
         }
     };
+
+
+    //- True if triangle t is of a solid (not a fluid) material region
+    bool isSolid
+    (
+        const Foam::triMesh& mesh,
+        const Foam::elementModel& elements,
+        const label t
+    )
+    {
+        const label r = mesh.triangleRegion()[t];
+        return elements.hasMaterial(r) && !elements.material(r).isFluid();
+    }
+
+
+    //- The solid triangles, their largest edge length and the lower left
+    //  corner of their bounding box
+    struct solidTriangles
+    {
+        std::vector<label> triangles;
+        scalar edgeMax = 0, xMin = Foam::GREAT, yMin = Foam::GREAT;
+
+        solidTriangles
+        (
+            const Foam::triMesh& mesh,
+            const Foam::elementModel& elements
+        )
+        {
+            const std::vector<scalar>& X = mesh.points();
+            const std::vector<label>& tri = mesh.triangles();
+            for (label t = 0; t < mesh.nTriangles(); ++t)
+            {
+                if (!isSolid(mesh, elements, t)) continue;
+                triangles.push_back(t);
+                for (label a = 0; a < 3; ++a)
+                {
+                    const label p = tri[3*t + a], q = tri[3*t + (a + 1) % 3];
+                    edgeMax = std::max
+                    (
+                        edgeMax,
+                        std::hypot(X[2*q] - X[2*p], X[2*q + 1] - X[2*p + 1])
+                    );
+                    xMin = std::min(xMin, X[2*p]);
+                    yMin = std::min(yMin, X[2*p + 1]);
+                }
+            }
+        }
+    };
+
+
+    //- Point location among the solid triangles, in buckets of the largest
+    //  solid edge length
+    class solidLocator
+    {
+        const std::vector<scalar>& X_;
+        const std::vector<label>& tri_;
+        bucketGrid triangles_;
+
+    public:
+
+        solidLocator(const Foam::triMesh& mesh, const solidTriangles& solid)
+        :
+            X_(mesh.points()),
+            tri_(mesh.triangles()),
+            triangles_(solid.xMin, solid.yMin, solid.edgeMax)
+        {
+            for (const label t : solid.triangles)
+            {
+                long long i0 = LLONG_MAX, i1 = LLONG_MIN;
+                long long j0 = LLONG_MAX, j1 = LLONG_MIN;
+                for (label a = 0; a < 3; ++a)
+                {
+                    const label p = tri_[3*t + a];
+                    i0 = std::min(i0, triangles_.ix(X_[2*p]));
+                    i1 = std::max(i1, triangles_.ix(X_[2*p]));
+                    j0 = std::min(j0, triangles_.iy(X_[2*p + 1]));
+                    j1 = std::max(j1, triangles_.iy(X_[2*p + 1]));
+                }
+                for (long long i = i0; i <= i1; ++i)
+                {
+                    for (long long j = j0; j <= j1; ++j) triangles_.insert(i, j, t);
+                }
+            }
+        }
+
+        //- The solid triangle holding a point (-1: none), and its
+        //  barycentric coordinates
+        label locate(const scalar px, const scalar py, scalar lambda[3]) const
+        {
+            const std::vector<scalar>& X = X_;
+            const std::vector<label>* cell =
+                triangles_.cell(triangles_.ix(px), triangles_.iy(py));
+            if (!cell) return label(-1);
+            for (const label t : *cell)
+            {
+                const label* n = &tri_[3*t];
+                const scalar x0 = X[2*n[0]], y0 = X[2*n[0] + 1];
+                const scalar x1 = X[2*n[1]], y1 = X[2*n[1] + 1];
+                const scalar x2 = X[2*n[2]], y2 = X[2*n[2] + 1];
+                const scalar det = (x1 - x0)*(y2 - y0) - (x2 - x0)*(y1 - y0);
+                const scalar l1 = ((px - x0)*(y2 - y0) - (x2 - x0)*(py - y0))/det;
+                const scalar l2 = ((x1 - x0)*(py - y0) - (px - x0)*(y1 - y0))/det;
+                const scalar l0 = 1 - l1 - l2;
+                const scalar tol = 1e-12;
+                if (l0 >= -tol && l1 >= -tol && l2 >= -tol)
+                {
+                    lambda[0] = l0;
+                    lambda[1] = l1;
+                    lambda[2] = l2;
+                    return t;
+                }
+            }
+            return label(-1);
+        }
+    };
+
+
+    //- The solid segments that fluid can reach, as pairs first node, second
+    //  node (the solid on their left)
+    std::vector<label> reachableSegments
+    (
+        const Foam::triMesh& mesh,
+        const Foam::elementModel& elements,
+        const Foam::List<Foam::patchType>& patchTypes,
+        const std::vector<label>& solidTriangles
+    )
+    {
+        const std::vector<label>& tri = mesh.triangles();
+        const std::vector<label>& edgeTri = mesh.edgeTriangles();
+        const std::vector<label>& triEdges = mesh.triangleEdges();
+
+        // Patch of each boundary edge (-1: internal)
+        std::vector<label> edgePatch(mesh.nEdges(), -1);
+        for (label s = 0; s < mesh.nSegments(); ++s)
+        {
+            edgePatch[mesh.segmentEdge()[s]] = mesh.segmentPatch()[s];
+        }
+
+        std::vector<label> segments;
+        for (const label t : solidTriangles)
+        {
+            for (label a = 0; a < 3; ++a)
+            {
+                const label k = triEdges[3*t + a];
+                const label other = edgeTri[2*k] == t ? edgeTri[2*k + 1] : edgeTri[2*k];
+                const bool reachable =
+                    other >= 0
+                  ? !isSolid(mesh, elements, other)
+                  : patchTypes[edgePatch[k]] == Foam::patchType::freeSurface;
+                if (!reachable) continue;
+                // Edge a runs from local node a to a + 1 of the counter-
+                // clockwise triangle
+                segments.push_back(tri[3*t + a]);
+                segments.push_back(tri[3*t + (a + 1) % 3]);
+            }
+        }
+        return segments;
+    }
+
+
+    //- True if a particle kept before is closer than minDistance to (px, py)
+    bool tooClose
+    (
+        const bucketGrid& kept,
+        const std::vector<scalar>& keptX,
+        const scalar px,
+        const scalar py,
+        const scalar minDistance
+    )
+    {
+        const long long i = kept.ix(px), j = kept.iy(py);
+        for (long long di = -1; di <= 1; ++di)
+        {
+            for (long long dj = -1; dj <= 1; ++dj)
+            {
+                const std::vector<label>* cell = kept.cell(i + di, j + dj);
+                if (!cell) continue;
+                for (const label o : *cell)
+                {
+                    if
+                    (
+                        std::hypot(keptX[2*o] - px, keptX[2*o + 1] - py)
+                      < minDistance
+                    )
+                    {
+                        return true;
+                    }
+                }
+            }
+        }
+        return false;
+    }
 }
 
 
@@ -65,109 +257,14 @@ Foam::structureParticleCoupling::structureParticleCoupling
 {
     const std::vector<scalar>& X = mesh.points();
     const std::vector<label>& tri = mesh.triangles();
-    const std::vector<label>& triRegion = mesh.triangleRegion();
-    const std::vector<label>& edgeTri = mesh.edgeTriangles();
-    const std::vector<label>& triEdges = mesh.triangleEdges();
 
-    auto solid = [&](const label t)
-    {
-        const label r = triRegion[t];
-        return elements.hasMaterial(r) && !elements.material(r).isFluid();
-    };
+    const solidTriangles solid(mesh, elements);
+    if (solid.triangles.empty() || spacing <= 0 || nLayers <= 0) return;
+    const scalar xMin = solid.xMin, yMin = solid.yMin;
 
-    // The solid triangles in buckets of the largest solid edge length
-    std::vector<label> solidTriangles;
-    scalar edgeMax = 0, xMin = GREAT, yMin = GREAT;
-    for (label t = 0; t < mesh.nTriangles(); ++t)
-    {
-        if (!solid(t)) continue;
-        solidTriangles.push_back(t);
-        for (label a = 0; a < 3; ++a)
-        {
-            const label p = tri[3*t + a], q = tri[3*t + (a + 1) % 3];
-            edgeMax = std::max
-            (
-                edgeMax, std::hypot(X[2*q] - X[2*p], X[2*q + 1] - X[2*p + 1])
-            );
-            xMin = std::min(xMin, X[2*p]);
-            yMin = std::min(yMin, X[2*p + 1]);
-        }
-    }
-    if (solidTriangles.empty() || spacing <= 0 || nLayers <= 0) return;
-
-    bucketGrid triangles(xMin, yMin, edgeMax);
-    for (const label t : solidTriangles)
-    {
-        long long i0 = LLONG_MAX, i1 = LLONG_MIN, j0 = LLONG_MAX, j1 = LLONG_MIN;
-        for (label a = 0; a < 3; ++a)
-        {
-            const label p = tri[3*t + a];
-            i0 = std::min(i0, triangles.ix(X[2*p]));
-            i1 = std::max(i1, triangles.ix(X[2*p]));
-            j0 = std::min(j0, triangles.iy(X[2*p + 1]));
-            j1 = std::max(j1, triangles.iy(X[2*p + 1]));
-        }
-        for (long long i = i0; i <= i1; ++i)
-        {
-            for (long long j = j0; j <= j1; ++j) triangles.insert(i, j, t);
-        }
-    }
-
-    // The solid triangle holding a point, and its barycentric coordinates
-    auto locate = [&](const scalar px, const scalar py, scalar lambda[3])
-    {
-        const std::vector<label>* cell =
-            triangles.cell(triangles.ix(px), triangles.iy(py));
-        if (!cell) return label(-1);
-        for (const label t : *cell)
-        {
-            const label* n = &tri[3*t];
-            const scalar x0 = X[2*n[0]], y0 = X[2*n[0] + 1];
-            const scalar x1 = X[2*n[1]], y1 = X[2*n[1] + 1];
-            const scalar x2 = X[2*n[2]], y2 = X[2*n[2] + 1];
-            const scalar det = (x1 - x0)*(y2 - y0) - (x2 - x0)*(y1 - y0);
-            const scalar l1 = ((px - x0)*(y2 - y0) - (x2 - x0)*(py - y0))/det;
-            const scalar l2 = ((x1 - x0)*(py - y0) - (px - x0)*(y1 - y0))/det;
-            const scalar l0 = 1 - l1 - l2;
-            const scalar tol = 1e-12;
-            if (l0 >= -tol && l1 >= -tol && l2 >= -tol)
-            {
-                lambda[0] = l0;
-                lambda[1] = l1;
-                lambda[2] = l2;
-                return t;
-            }
-        }
-        return label(-1);
-    };
-
-    // Patch of each boundary edge (-1: internal)
-    std::vector<label> edgePatch(mesh.nEdges(), -1);
-    for (label s = 0; s < mesh.nSegments(); ++s)
-    {
-        edgePatch[mesh.segmentEdge()[s]] = mesh.segmentPatch()[s];
-    }
-
-    // The solid segments that fluid can reach: first node, second node
-    // (the solid on their left)
-    std::vector<label> reachableSegments;
-    for (const label t : solidTriangles)
-    {
-        for (label a = 0; a < 3; ++a)
-        {
-            const label k = triEdges[3*t + a];
-            const label other = edgeTri[2*k] == t ? edgeTri[2*k + 1] : edgeTri[2*k];
-            const bool reachable =
-                other >= 0
-              ? !solid(other)
-              : patchTypes[edgePatch[k]] == patchType::freeSurface;
-            if (!reachable) continue;
-            // Edge a runs from local node a to a + 1 of the counter-
-            // clockwise triangle
-            reachableSegments.push_back(tri[3*t + a]);
-            reachableSegments.push_back(tri[3*t + (a + 1) % 3]);
-        }
-    }
+    const solidLocator locator(mesh, solid);
+    const std::vector<label> segments =
+        reachableSegments(mesh, elements, patchTypes, solid.triangles);
 
     // Layers behind the segments, the particles closer than dx/2 to one
     // kept before dropped. Layer by layer over all segments: where the
@@ -180,10 +277,10 @@ Foam::structureParticleCoupling::structureParticleCoupling
     for (label layer = 0; layer < nLayers; ++layer)
     {
         const scalar depth = (layer + 0.5)*spacing;
-        for (size_t seg = 0; seg < reachableSegments.size(); seg += 2)
+        for (size_t seg = 0; seg < segments.size(); seg += 2)
         {
-            const label p = reachableSegments[seg];
-            const label q = reachableSegments[seg + 1];
+            const label p = segments[seg];
+            const label q = segments[seg + 1];
             const scalar ex = X[2*q] - X[2*p], ey = X[2*q + 1] - X[2*p + 1];
             const scalar length = std::hypot(ex, ey);
             const scalar nx = -ey/length, ny = ex/length;
@@ -203,33 +300,12 @@ Foam::structureParticleCoupling::structureParticleCoupling
                     const scalar px = X[2*p] + u*ex + depth*nx;
                     const scalar py = X[2*p + 1] + u*ey + depth*ny;
                     scalar lambda[3];
-                    const label holder = locate(px, py, lambda);
+                    const label holder = locator.locate(px, py, lambda);
                     if (holder < 0) continue;
 
-                    const long long i = kept.ix(px), j = kept.iy(py);
-                    bool tooClose = false;
-                    for (long long di = -1; di <= 1 && !tooClose; ++di)
-                    {
-                        for (long long dj = -1; dj <= 1 && !tooClose; ++dj)
-                        {
-                            const std::vector<label>* cell = kept.cell(i + di, j + dj);
-                            if (!cell) continue;
-                            for (const label o : *cell)
-                            {
-                                if
-                                (
-                                    std::hypot(keptX[2*o] - px, keptX[2*o + 1] - py)
-                                  < minDistance
-                                )
-                                {
-                                    tooClose = true;
-                                    break;
-                                }
-                            }
-                        }
-                    }
-                    if (tooClose) continue;
+                    if (tooClose(kept, keptX, px, py, minDistance)) continue;
 
+                    const long long i = kept.ix(px), j = kept.iy(py);
                     kept.insert(i, j, label(triangle_.size()));
                     keptX.push_back(px);
                     keptX.push_back(py);

@@ -32,11 +32,24 @@ void Foam::triMesh::orient()
 
 void Foam::triMesh::buildTopology()
 {
+    std::vector<std::uint64_t> key;
+    const std::vector<label> order = sortedHalfEdges(key);
+    buildEdges(key, order);
+    buildNodeTriangles();
+    orientSegments();
+}
+
+
+std::vector<Foam::label> Foam::triMesh::sortedHalfEdges
+(
+    std::vector<std::uint64_t>& key
+) const
+{
     const label nTri = nTriangles();
     const label nPts = nPoints();
 
     // Sort the 3*nTri half-edges by their node pair; equal pairs are shared
-    std::vector<std::uint64_t> key(3*nTri);
+    key.assign(3*nTri, 0);
     for (label t = 0; t < nTri; ++t)
     {
         for (label i = 0; i < 3; ++i)
@@ -54,6 +67,17 @@ void Foam::triMesh::buildTopology()
         order.begin(), order.end(),
         [&key](label i, label j) { return key[i] < key[j]; }
     );
+    return order;
+}
+
+
+void Foam::triMesh::buildEdges
+(
+    const std::vector<std::uint64_t>& key,
+    const std::vector<label>& order
+)
+{
+    const label nTri = nTriangles();
 
     edges_.clear();
     edgeTriangles_.clear();
@@ -89,6 +113,13 @@ void Foam::triMesh::buildTopology()
         edgeTriangles_.push_back(second);
         k = m;
     }
+}
+
+
+void Foam::triMesh::buildNodeTriangles()
+{
+    const label nTri = nTriangles();
+    const label nPts = nPoints();
 
     // Node-triangle adjacency (compressed rows)
     nodeTriangleStart_.assign(nPts + 1, 0);
@@ -103,7 +134,11 @@ void Foam::triMesh::buildTopology()
     {
         nodeTriangles_[fill[triangles_[h]]++] = h;
     }
+}
 
+
+void Foam::triMesh::orientSegments()
+{
     // Boundary segments: find their edge, orient them with the triangle on
     // the left (outward normal = (dy, -dx)/length)
     const label nSeg = nSegments();

@@ -170,6 +170,27 @@ void Foam::cellLinkedList::update
             << exit(FatalError);
     }
 
+    sizeGrid(particles, cellSize);
+
+    const label n = particles.size();
+    const label nCells = nx_*ny_;
+    resizeWithSlack(cellStart_, nCells + 1);
+    resizeWithSlack(cellParticles_, n);
+    resizeWithSlack(particleCell_, n);
+
+    assignCells(particles);
+    sortByCell(n);
+
+    nParticles_ = n;
+}
+
+
+void Foam::cellLinkedList::sizeGrid
+(
+    const particleSet& particles,
+    const scalar cellSize
+)
+{
     const label n = particles.size();
     const scalar* __restrict__ x = particles.positions().data();
     const scalar* __restrict__ h = particles.smoothingLength().data();
@@ -225,13 +246,14 @@ void Foam::cellLinkedList::update
     nx_ = label(nxReal);
     ny_ = label(nyReal);
     hMax_ = hMax;
-    const label nCells = nx_*ny_;
+}
 
-    resizeWithSlack(cellStart_, nCells + 1);
-    resizeWithSlack(cellParticles_, n);
-    resizeWithSlack(particleCell_, n);
 
-    // Cell of every particle
+void Foam::cellLinkedList::assignCells(const particleSet& particles)
+{
+    const label n = particles.size();
+    const scalar* __restrict__ x = particles.positions().data();
+
     label* __restrict__ cell = particleCell_.data();
     const scalar x0 = x0_, y0 = y0_, inv = invCellSize_;
     const label nx = nx_, ny = ny_;
@@ -242,6 +264,13 @@ void Foam::cellLinkedList::update
         const label iy = std::min(label((x[2*i + 1] - y0)*inv), ny - 1);
         cell[i] = iy*nx + ix;
     }
+}
+
+
+void Foam::cellLinkedList::sortByCell(const label n)
+{
+    const label nCells = nx_*ny_;
+    const label* __restrict__ cell = particleCell_.data();
 
     // Counting sort (stable, serial: O(N) increments, a few per cent of a
     // neighbour search). The counts go to start[c + 1]; after the prefix
@@ -268,8 +297,6 @@ void Foam::cellLinkedList::update
         start[c] = start[c - 1];
     }
     start[0] = 0;
-
-    nParticles_ = n;
 }
 
 

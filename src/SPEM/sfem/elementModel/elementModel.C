@@ -68,11 +68,7 @@ inline void areaGradient
 
 void Foam::elementModel::build(const triMesh& mesh)
 {
-    const label nMeshTri = mesh.nTriangles();
     const label nReg = mesh.nRegions();
-    const std::vector<label>& tri = mesh.triangles();
-    const std::vector<label>& triRegion = mesh.triangleRegion();
-    const std::vector<scalar>& density = initialDensity_;
 
     if (materials_.size() != nReg)
     {
@@ -80,6 +76,24 @@ void Foam::elementModel::build(const triMesh& mesh)
             << "Mesh has " << nReg << " regions but " << materials_.size()
             << " materials were given" << exit(FatalError);
     }
+
+    const std::vector<label> triElem = orderElements(mesh);
+    std::vector<std::vector<std::array<label, 3>>> regionDomains =
+        smoothingDomains(mesh, triElem);
+    numberDomains(mesh, regionDomains);
+    buildNodeElements();
+    buildReferenceGeometry();
+}
+
+
+std::vector<Foam::label> Foam::elementModel::orderElements
+(
+    const triMesh& mesh
+)
+{
+    const label nMeshTri = mesh.nTriangles();
+    const std::vector<label>& tri = mesh.triangles();
+    const std::vector<label>& triRegion = mesh.triangleRegion();
 
     // Elements: the triangles not removed, ordered by region (stable:
     // keeps the mesh's locality)
@@ -105,10 +119,21 @@ void Foam::elementModel::build(const triMesh& mesh)
             elemNodes_[3*e + a] = tri[3*elemTriangle_[e] + a];
         }
     }
+    return triElem;
+}
 
+
+std::vector<std::vector<std::array<Foam::label, 3>>>
+Foam::elementModel::smoothingDomains
+(
+    const triMesh& mesh,
+    const std::vector<label>& triElem
+) const
+{
     // Smoothing domains: one per (edge, region) pair, ordered by region
+    const label nReg = mesh.nRegions();
+    const std::vector<label>& triRegion = mesh.triangleRegion();
     const std::vector<label>& edgeTri = mesh.edgeTriangles();
-    const std::vector<label>& triEdges = mesh.triangleEdges();
     const label nEdge = mesh.nEdges();
 
     // For each region, the domains as (edge, element pair)
@@ -140,6 +165,20 @@ void Foam::elementModel::build(const triMesh& mesh)
             }
         }
     }
+    return regionDomains;
+}
+
+
+void Foam::elementModel::numberDomains
+(
+    const triMesh& mesh,
+    std::vector<std::vector<std::array<label, 3>>>& regionDomains
+)
+{
+    const label nReg = mesh.nRegions();
+    const label nTri = label(elemTriangle_.size());
+    const std::vector<label>& triRegion = mesh.triangleRegion();
+    const std::vector<label>& triEdges = mesh.triangleEdges();
 
     regions_.setSize(nReg);
     label nDom = 0;
@@ -175,8 +214,13 @@ void Foam::elementModel::build(const triMesh& mesh)
         regionDomains[r].clear();
         regionDomains[r].shrink_to_fit();
     }
+}
 
-    // Node-element adjacency
+
+void Foam::elementModel::buildNodeElements()
+{
+    const label nTri = label(elemTriangle_.size());
+
     nodeElemStart_.assign(nNodes_ + 1, 0);
     for (label n : elemNodes_) ++nodeElemStart_[n + 1];
     for (label n = 0; n < nNodes_; ++n) nodeElemStart_[n + 1] += nodeElemStart_[n];
@@ -185,6 +229,15 @@ void Foam::elementModel::build(const triMesh& mesh)
         std::vector<label> fill(nodeElemStart_.begin(), nodeElemStart_.end() - 1);
         for (label h = 0; h < 3*nTri; ++h) nodeElems_[fill[elemNodes_[h]]++] = h;
     }
+}
+
+
+void Foam::elementModel::buildReferenceGeometry()
+{
+    const label nReg = label(regions_.size());
+    const label nTri = label(elemTriangle_.size());
+    const label nDom = label(domainElems_.size()/2);
+    const std::vector<scalar>& density = initialDensity_;
 
     // Reference geometry, lumped masses, domain masses, solid time scale
     elemArea_.resize(nTri);

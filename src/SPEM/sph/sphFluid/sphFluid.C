@@ -122,6 +122,102 @@ namespace
             fy += vf*(fi.vy - v[2*j + 1]);
         }
     }
+
+    //- The neighbour sums of the density pass for fluid particle i
+    struct densitySums
+    {
+        //- Moments sum (x_j - x_i) (x) grad_i W V_j (symmetric)
+        scalar Mxx = 0, Mxy = 0, Myy = 0;
+
+        //- Continuity sum m_j v_ij (x) grad_i W
+        scalar Sxx = 0, Sxy = 0, Syx = 0, Syy = 0;
+
+        //- grad C, div r and the density diffusion sum
+        scalar gCx = 0, gCy = 0, div = 0, diffusion = 0;
+
+        //- Add neighbour j's moments, grad C and div r: (dx, dy) = x_i - x_j,
+        //  (gx, gy) = grad_i W_ij, Vj its volume
+        inline void addMoments
+        (
+            const scalar dx,
+            const scalar dy,
+            const scalar gx,
+            const scalar gy,
+            const scalar Vj
+        )
+        {
+            Mxx -= dx*gx*Vj;
+            Mxy -= dx*gy*Vj;
+            Myy -= dy*gy*Vj;
+            gCx += gx*Vj;
+            gCy += gy*Vj;
+            div -= (dx*gx + dy*gy)*Vj;
+        }
+
+        //- Add neighbour j's continuity term, (wx, wy) = m_j v_ij
+        inline void addContinuity
+        (
+            const scalar wx,
+            const scalar wy,
+            const scalar gx,
+            const scalar gy
+        )
+        {
+            Sxx += wx*gx;
+            Sxy += wx*gy;
+            Syx += wy*gx;
+            Syy += wy*gy;
+        }
+
+        //- Eq. (16) without diffusion: sum m_j v_ij . C_i grad_i W_ij
+        inline scalar continuity
+        (
+            const scalar cxx,
+            const scalar cxy,
+            const scalar cyy
+        ) const
+        {
+            return cxx*Sxx + cxy*(Sxy + Syx) + cyy*Syy;
+        }
+    };
+
+    //- The density at the end of the step from rhoOld at its start; free
+    //  surface: the fluid cannot pull on the air, so a surface particle's
+    //  density (pressure) stays at or above rho0 (0): splashes and thin
+    //  jets keep finite volumes and do not clump
+    inline scalar advancedDensity
+    (
+        const scalar rhoOld,
+        const scalar drho,
+        const scalar dt,
+        const bool freeSurface,
+        const scalar rho0
+    )
+    {
+        scalar rhoNew = rhoOld + dt*drho;
+        if (freeSurface) rhoNew = std::max(rhoNew, rho0);
+        return rhoNew;
+    }
+
+    //- Stable step of a fluid particle at Courant number 1: acoustic,
+    //  force and viscous limits (see sphFluid::stableDeltaT())
+    inline scalar particleDeltaT
+    (
+        const scalar speed,
+        const scalar acc,
+        const scalar h,
+        const scalar c,
+        const scalar nu
+    )
+    {
+        scalar dti = Foam::sphFluid::acousticFactor*h/(c + speed);
+        if (acc > 0)
+        {
+            dti = std::min(dti, Foam::sphFluid::forceFactor*std::sqrt(h/acc));
+        }
+        if (nu > 0) dti = std::min(dti, Foam::sphFluid::viscousFactor*h*h/nu);
+        return dti;
+    }
 }
 
 const Foam::Enum<Foam::gradientCorrectionType>
@@ -143,6 +239,41 @@ Foam::sphFluid::momentumGradientTypeNames
 
 // * * * * * * * * * * * * * * * * * controls  * * * * * * * * * * * * * * * //
 
+void Foam::sphFluid::controls::readEntries(const dictionary& d)
+{
+    smoothingLengthRatio =
+        d.getOrDefault<scalar>("smoothingLengthRatio", smoothingLengthRatio);
+    gradientCorrection =
+        gradientCorrectionTypeNames.getOrDefault
+        (
+            "gradientCorrection", d, gradientCorrection
+        );
+    densityDiffusion =
+        d.getOrDefault<scalar>("densityDiffusion", densityDiffusion);
+    shifting = d.getOrDefault<scalar>("shifting", shifting);
+    freeSurfaceThreshold =
+        d.getOrDefault<scalar>("freeSurfaceThreshold", freeSurfaceThreshold);
+    wallLayers = d.getOrDefault<label>("wallLayers", wallLayers);
+    momentumGradient =
+        momentumGradientTypeNames.getOrDefault
+        (
+            "momentumGradient", d, momentumGradient
+        );
+    initialRelaxation =
+        d.getOrDefault<label>("initialRelaxation", initialRelaxation);
+    relaxationCoefficient =
+        d.getOrDefault<scalar>
+        (
+            "relaxationCoefficient", relaxationCoefficient
+        );
+    lostParticleDistance =
+        d.getOrDefault<scalar>
+        (
+            "lostParticleDistance", lostParticleDistance
+        );
+}
+
+
 Foam::sphFluid::controls
 Foam::sphFluid::controls::read(const dictionary& schemesDict)
 {
@@ -160,36 +291,7 @@ Foam::sphFluid::controls::read(const dictionary& schemesDict)
             "lostParticleDistance"
         }
     );
-    c.smoothingLengthRatio =
-        d->getOrDefault<scalar>("smoothingLengthRatio", c.smoothingLengthRatio);
-    c.gradientCorrection =
-        gradientCorrectionTypeNames.getOrDefault
-        (
-            "gradientCorrection", *d, c.gradientCorrection
-        );
-    c.densityDiffusion =
-        d->getOrDefault<scalar>("densityDiffusion", c.densityDiffusion);
-    c.shifting = d->getOrDefault<scalar>("shifting", c.shifting);
-    c.freeSurfaceThreshold =
-        d->getOrDefault<scalar>("freeSurfaceThreshold", c.freeSurfaceThreshold);
-    c.wallLayers = d->getOrDefault<label>("wallLayers", c.wallLayers);
-    c.momentumGradient =
-        momentumGradientTypeNames.getOrDefault
-        (
-            "momentumGradient", *d, c.momentumGradient
-        );
-    c.initialRelaxation =
-        d->getOrDefault<label>("initialRelaxation", c.initialRelaxation);
-    c.relaxationCoefficient =
-        d->getOrDefault<scalar>
-        (
-            "relaxationCoefficient", c.relaxationCoefficient
-        );
-    c.lostParticleDistance =
-        d->getOrDefault<scalar>
-        (
-            "lostParticleDistance", c.lostParticleDistance
-        );
+    c.readEntries(*d);
 
     auto bad = [&](const char* key, const char* what)
     {
@@ -402,9 +504,7 @@ void Foam::sphFluid::densityPass(const Kernel&)
         if (kind[i] != particleSet::kind::fluid) continue;
 
         const scalar vxi = v[2*i], vyi = v[2*i + 1], rhoi = rhoOld[i];
-        scalar Mxx = 0, Mxy = 0, Myy = 0;
-        scalar Sxx = 0, Sxy = 0, Syx = 0, Syy = 0;
-        scalar gCx = 0, gCy = 0, div = 0, diffusion = 0;
+        densitySums sums;
 
         cells_.forEachNeighbour
         (
@@ -423,13 +523,7 @@ void Foam::sphFluid::densityPass(const Kernel&)
                     fluidj ? rhoOld[j] : (ghostj ? rho[j] : rho0);
                 const scalar Vj = m[j]/rhoj;
 
-                // Moments sum (x_j - x_i) (x) grad_i W V_j
-                Mxx -= dx*gx*Vj;
-                Mxy -= dx*gy*Vj;
-                Myy -= dy*gy*Vj;
-                gCx += gx*Vj;
-                gCy += gy*Vj;
-                div -= (dx*gx + dy*gy)*Vj;
+                sums.addMoments(dx, dy, gx, gy, Vj);
 
                 // Continuity: m_j v_ij (x) grad_i W (eqs. 16, 23). A wall
                 // particle's velocity field holds the mirrored velocity of
@@ -440,10 +534,7 @@ void Foam::sphFluid::densityPass(const Kernel&)
                     fluidj || ghostj || kind[j] == particleSet::kind::structure;
                 const scalar wx = m[j]*(vxi - (moving ? v[2*j] : 0));
                 const scalar wy = m[j]*(vyi - (moving ? v[2*j + 1] : 0));
-                Sxx += wx*gx;
-                Sxy += wx*gy;
-                Syx += wy*gx;
-                Syy += wy*gy;
+                sums.addContinuity(wx, wy, gx, gy);
 
                 // Density diffusion between fluid particles (ghosts are
                 // fluid), hydrostatic part removed; psi_ij . grad_i W =
@@ -452,14 +543,18 @@ void Foam::sphFluid::densityPass(const Kernel&)
                 {
                     const scalar dRho =
                         (rhoj - rhoi) + (hx*dx + hy*dy);
-                    diffusion -= 2*dRho*F*Vj*hij;
+                    sums.diffusion -= 2*dRho*F*Vj*hij;
                 }
             }
         );
 
         // Correction C_i (symmetric: xx, xy, yy); identity at the surface
         scalar Ci[3];
-        gradientCorrectionMatrix(correction, div < threshold, Mxx, Mxy, Myy, Ci);
+        const scalar div = sums.div;
+        gradientCorrectionMatrix
+        (
+            correction, div < threshold, sums.Mxx, sums.Mxy, sums.Myy, Ci
+        );
         const scalar cxx = Ci[0], cxy = Ci[1], cyy = Ci[2];
         if (C)
         {
@@ -467,23 +562,19 @@ void Foam::sphFluid::densityPass(const Kernel&)
             C[3*i + 1] = cxy;
             C[3*i + 2] = cyy;
         }
-        gradC[2*i] = gCx;
-        gradC[2*i + 1] = gCy;
+        gradC[2*i] = sums.gCx;
+        gradC[2*i + 1] = sums.gCy;
         divR[i] = div;
 
         // Eq. (16): drho/dt = sum m_j v_ij . C_i grad_i W_ij
         const scalar drho =
-            cxx*Sxx + cxy*(Sxy + Syx) + cyy*Syy + delta*c*diffusion;
+            sums.continuity(cxx, cxy, cyy) + delta*c*sums.diffusion;
         // No step pending (start, restart, re-evaluation, or a particle
         // appended since the step): the density stays
         scalar rhoNew = rho[i];
         if (dt > 0 && id[i] < freshIdBegin)
         {
-            rhoNew = rhoi + dt*drho;
-            // Free surface: the fluid cannot pull on the air, so a surface
-            // particle's density (pressure) stays at or above rho0 (0):
-            // splashes and thin jets keep finite volumes and do not clump
-            if (div < threshold) rhoNew = std::max(rhoNew, rho0);
+            rhoNew = advancedDensity(rhoi, drho, dt, div < threshold, rho0);
         }
         rho[i] = rhoNew;
         // Eq. (7)
@@ -644,10 +735,7 @@ void Foam::sphFluid::momentumPass(const Kernel&)
         // Stable step of this particle at Courant number 1
         const scalar speed = std::sqrt(vxi*vxi + vyi*vyi);
         const scalar acc = std::sqrt(a[2*i]*a[2*i] + a[2*i + 1]*a[2*i + 1]);
-        scalar dti = acousticFactor*h[i]/(c + speed);
-        if (acc > 0) dti = std::min(dti, forceFactor*std::sqrt(h[i]/acc));
-        if (nu > 0) dti = std::min(dti, viscousFactor*h[i]*h[i]/nu);
-        dtMin = std::min(dtMin, dti);
+        dtMin = std::min(dtMin, particleDeltaT(speed, acc, h[i], c, nu));
     }
 
     wallForce_[0] = fwx;

@@ -71,11 +71,15 @@ bool segmentsMeet
      || (o4 == 0 && withinBox(c, d, b));
 }
 
+} // End anonymous namespace
+
+
+// * * * * * * * * * * * * * * * Private Types * * * * * * * * * * * * * * //
 
 //- A part of a layer curve: a moved edge (a segment) or an arc round a
 //  concave vertex, over the parameter range [begin, end]: the distance
 //  along the segment, or the angle turned along the arc (clockwise)
-struct layerPiece
+struct Foam::polygonShape::layerPiece
 {
     bool arc;
 
@@ -124,8 +128,6 @@ struct layerPiece
         return at(begin + (arc ? s/radius : s));
     }
 };
-
-} // End anonymous namespace
 
 
 // * * * * * * * * * * * * * * * * Constructors  * * * * * * * * * * * * * * //
@@ -192,6 +194,20 @@ void Foam::polygonShape::checkAndOrient(const dictionary& dict)
     // Against round-off in the orientation tests: a fraction of size^2
     const scalar areaTolerance = 1e-12*sqr(size_);
 
+    checkDistinctPoints(dict);
+    const scalar twiceArea = checkEnclosedArea(dict, areaTolerance);
+    checkSimple(dict, areaTolerance);
+
+    if (twiceArea < 0)
+    {
+        std::reverse(points_.begin(), points_.end());
+    }
+}
+
+
+void Foam::polygonShape::checkDistinctPoints(const dictionary& dict) const
+{
+    const label n = label(points_.size());
     for (label i = 0; i < n; ++i)
     {
         if (!(mag(points_[(i + 1) % n] - points_[i]) > 1e-12*size_))
@@ -202,7 +218,16 @@ void Foam::polygonShape::checkAndOrient(const dictionary& dict)
                 << exit(FatalIOError);
         }
     }
+}
 
+
+Foam::scalar Foam::polygonShape::checkEnclosedArea
+(
+    const dictionary& dict,
+    const scalar areaTolerance
+) const
+{
+    const label n = label(points_.size());
     scalar twiceArea = 0;
     for (label i = 0; i < n; ++i)
     {
@@ -214,7 +239,17 @@ void Foam::polygonShape::checkAndOrient(const dictionary& dict)
             << "Entry 'points' of " << dict.name()
             << " encloses no area" << exit(FatalIOError);
     }
+    return twiceArea;
+}
 
+
+void Foam::polygonShape::checkSimple
+(
+    const dictionary& dict,
+    const scalar areaTolerance
+) const
+{
+    const label n = label(points_.size());
     for (label i = 0; i < n; ++i)
     {
         const vector2D& a = points_[i];
@@ -257,11 +292,6 @@ void Foam::polygonShape::checkAndOrient(const dictionary& dict)
                     << points_[(j + 1) % n] << exit(FatalIOError);
             }
         }
-    }
-
-    if (twiceArea < 0)
-    {
-        std::reverse(points_.begin(), points_.end());
     }
 }
 
@@ -332,78 +362,89 @@ void Foam::polygonShape::appendParticle
 }
 
 
-void Foam::polygonShape::appendLayer
+bool Foam::polygonShape::onLayer
+(
+    const vector2D& p,
+    const scalar depth
+) const
+{
+    // A point of a moved edge or arc is on the layer when no other part of
+    // the surface is closer than depth; the tolerance absorbs round-off
+    const scalar tolerance = 1e-12*size_;
+    return signedDistance(p.x(), p.y()) <= -depth + tolerance;
+}
+
+
+void Foam::polygonShape::appendValidParts
+(
+    layerPiece piece,
+    const scalar range,
+    const scalar depth,
+    const scalar spacing,
+    std::vector<layerPiece>& pieces
+) const
+{
+    const scalar length = piece.arc ? piece.radius*range : range;
+    // Fine enough that a valid part missed is much shorter than spacing
+    const label nSamples =
+        std::max(label(16), label(std::ceil(8*length/spacing)));
+    auto valid = [&](const scalar u) { return onLayer(piece.at(u), depth); };
+
+    // Bisection to round-off between a valid and an invalid parameter
+    auto boundary = [&](scalar in, scalar out)
+    {
+        for (int iter = 0; iter < 100; ++iter)
+        {
+            const scalar mid = 0.5*(in + out);
+            if (mid == in || mid == out)
+            {
+                break;
+            }
+            (valid(mid) ? in : out) = mid;
+        }
+        return in;
+    };
+
+    bool inRun = false;
+    scalar runBegin = 0, uPrevious = 0;
+    for (label k = 0; k <= nSamples; ++k)
+    {
+        const scalar u = range*k/nSamples;
+        const bool v = valid(u);
+        if (v && !inRun)
+        {
+            runBegin = k == 0 ? 0 : boundary(u, uPrevious);
+            inRun = true;
+        }
+        else if (!v && inRun)
+        {
+            piece.begin = runBegin;
+            piece.end = boundary(uPrevious, u);
+            pieces.push_back(piece);
+            inRun = false;
+        }
+        uPrevious = u;
+    }
+    if (inRun)
+    {
+        piece.begin = runBegin;
+        piece.end = range;
+        pieces.push_back(piece);
+    }
+}
+
+
+std::vector<Foam::polygonShape::layerPiece> Foam::polygonShape::layerPieces
 (
     const scalar depth,
-    const label layer,
-    const scalar spacing,
-    bodyWallParticles& candidates
+    const scalar spacing
 ) const
 {
     const label n = label(points_.size());
 
-    // A point of a moved edge or arc is on the layer when no other part of
-    // the surface is closer than depth; the tolerance absorbs round-off
-    const scalar tolerance = 1e-12*size_;
-    auto onLayer = [&](const vector2D& p)
-    {
-        return signedDistance(p.x(), p.y()) <= -depth + tolerance;
-    };
-
     // Moved edges and arcs in order round the polygon, each cut into its
     // parts that lie on the layer
     std::vector<layerPiece> pieces;
-    auto appendValidParts = [&](layerPiece piece, const scalar range)
-    {
-        const scalar length = piece.arc ? piece.radius*range : range;
-        // Fine enough that a valid part missed is much shorter than spacing
-        const label nSamples =
-            std::max(label(16), label(std::ceil(8*length/spacing)));
-        auto valid = [&](const scalar u) { return onLayer(piece.at(u)); };
-
-        // Bisection to round-off between a valid and an invalid parameter
-        auto boundary = [&](scalar in, scalar out)
-        {
-            for (int iter = 0; iter < 100; ++iter)
-            {
-                const scalar mid = 0.5*(in + out);
-                if (mid == in || mid == out)
-                {
-                    break;
-                }
-                (valid(mid) ? in : out) = mid;
-            }
-            return in;
-        };
-
-        bool inRun = false;
-        scalar runBegin = 0, uPrevious = 0;
-        for (label k = 0; k <= nSamples; ++k)
-        {
-            const scalar u = range*k/nSamples;
-            const bool v = valid(u);
-            if (v && !inRun)
-            {
-                runBegin = k == 0 ? 0 : boundary(u, uPrevious);
-                inRun = true;
-            }
-            else if (!v && inRun)
-            {
-                piece.begin = runBegin;
-                piece.end = boundary(uPrevious, u);
-                pieces.push_back(piece);
-                inRun = false;
-            }
-            uPrevious = u;
-        }
-        if (inRun)
-        {
-            piece.begin = runBegin;
-            piece.end = range;
-            pieces.push_back(piece);
-        }
-    };
-
     for (label i = 0; i < n; ++i)
     {
         const label previous = (i + n - 1) % n;
@@ -427,7 +468,7 @@ void Foam::polygonShape::appendLayer
                     scalar(1)
                 )
             );
-            appendValidParts(arc, angleTurned);
+            appendValidParts(arc, angleTurned, depth, spacing, pieces);
         }
 
         layerPiece segment;
@@ -436,7 +477,7 @@ void Foam::polygonShape::appendLayer
         segment.tangent = tangents_[i];
         segment.radius = 0;
         segment.angle0 = 0;
-        appendValidParts(segment, lengths_[i]);
+        appendValidParts(segment, lengths_[i], depth, spacing, pieces);
     }
 
     // Drop parts of zero length: the layer passes through them
@@ -451,9 +492,208 @@ void Foam::polygonShape::appendLayer
         ),
         pieces.end()
     );
+    return pieces;
+}
+
+
+std::vector<Foam::polygonShape::layerPiece> Foam::polygonShape::nextCurve
+(
+    const std::vector<layerPiece>& pieces,
+    const label first,
+    const scalar joinTolerance,
+    std::vector<bool>& used,
+    bool& closed
+)
+{
+    const label nPieces = label(pieces.size());
+    std::vector<label> chain(1, first);
+    used[first] = true;
+    closed = false;
+    while (true)
+    {
+        const layerPiece& last = pieces[chain.back()];
+        const vector2D end = last.at(last.end);
+        if (mag(pieces[first].at(pieces[first].begin) - end) < joinTolerance
+         && chain.size() > 1)
+        {
+            closed = true;
+            break;
+        }
+        // The next part round the polygon first, any other after
+        label next = -1;
+        for (label k = 1; k <= nPieces && next < 0; ++k)
+        {
+            const label candidate = (chain.back() + k) % nPieces;
+            const layerPiece& p = pieces[candidate];
+            if
+            (
+                (!used[candidate] || candidate == first)
+             && mag(p.at(p.begin) - end) < joinTolerance
+            )
+            {
+                next = candidate;
+            }
+        }
+        if (next == first)
+        {
+            closed = true;
+            break;
+        }
+        if (next < 0)
+        {
+            break;
+        }
+        chain.push_back(next);
+        used[next] = true;
+    }
+
+    std::vector<layerPiece> curve;
+    curve.reserve(chain.size());
+    for (const label k : chain)
+    {
+        curve.push_back(pieces[k]);
+    }
+    return curve;
+}
+
+
+std::vector<Foam::label> Foam::polygonShape::curveKinks
+(
+    const std::vector<layerPiece>& curve,
+    const bool closed
+)
+{
+    const label m = label(curve.size());
+    auto kinkAfter = [&](const label k)
+    {
+        if (k == m - 1 && !closed)
+        {
+            return true;
+        }
+        const layerPiece& a = curve[k];
+        const layerPiece& b = curve[(k + 1) % m];
+        const vector2D ta = a.tangentAt(a.end);
+        const vector2D tb = b.tangentAt(b.begin);
+        // Angles below 1e-6 rad are round-off of collinear edges
+        return std::abs(cross2D(ta, tb)) > 1e-6 || (ta & tb) < 0;
+    };
+
+    std::vector<label> kinks;
+    for (label k = 0; k < m; ++k)
+    {
+        if (kinkAfter(k))
+        {
+            kinks.push_back(k);
+        }
+    }
+    return kinks;
+}
+
+
+std::vector<Foam::vector2D> Foam::polygonShape::stretchPoints
+(
+    const std::vector<layerPiece>& curve,
+    const label firstPiece,
+    const label nParts,
+    const bool withEnd,
+    const scalar spacing
+)
+{
+    const label m = label(curve.size());
+    scalar length = 0;
+    for (label k = 0; k < nParts; ++k)
+    {
+        length += curve[(firstPiece + k) % m].length();
+    }
+    const label nSteps = nIntervals(length, spacing);
+    const label nPoints = withEnd ? nSteps + 1 : nSteps;
+    std::vector<vector2D> points;
+    points.reserve(nPoints);
+    label part = 0;
+    scalar partStart = 0;
+    for (label j = 0; j < nPoints; ++j)
+    {
+        const scalar s = length*j/nSteps;
+        while
+        (
+            part < nParts - 1
+         && s > partStart + curve[(firstPiece + part) % m].length()
+        )
+        {
+            partStart += curve[(firstPiece + part) % m].length();
+            ++part;
+        }
+        const layerPiece& p = curve[(firstPiece + part) % m];
+        points.push_back(p.atLength(std::min(s - partStart, p.length())));
+    }
+    return points;
+}
+
+
+void Foam::polygonShape::appendCurve
+(
+    const std::vector<layerPiece>& curve,
+    const bool closed,
+    const label layer,
+    const scalar spacing,
+    bodyWallParticles& candidates
+) const
+{
+    const label m = label(curve.size());
+    const std::vector<label> kinks = curveKinks(curve, closed);
+
+    auto placeStretch =
+        [&](const label firstPiece, const label nParts, const bool withEnd)
+    {
+        for
+        (
+            const vector2D& X
+          : stretchPoints(curve, firstPiece, nParts, withEnd, spacing)
+        )
+        {
+            appendParticle(X, layer, candidates);
+        }
+    };
+
+    if (closed && kinks.empty())
+    {
+        placeStretch(0, m, false);
+    }
+    else if (closed)
+    {
+        for (size_t k = 0; k < kinks.size(); ++k)
+        {
+            const label begin = (kinks[k] + 1) % m;
+            const label endKink = kinks[(k + 1) % kinks.size()];
+            const label nParts = (endKink - kinks[k] + m - 1) % m + 1;
+            placeStretch(begin, nParts, false);
+        }
+    }
+    else
+    {
+        label begin = 0;
+        for (size_t k = 0; k < kinks.size(); ++k)
+        {
+            placeStretch(begin, kinks[k] - begin + 1, k + 1 == kinks.size());
+            begin = kinks[k] + 1;
+        }
+    }
+}
+
+
+void Foam::polygonShape::appendLayer
+(
+    const scalar depth,
+    const label layer,
+    const scalar spacing,
+    bodyWallParticles& candidates
+) const
+{
+    const std::vector<layerPiece> pieces = layerPieces(depth, spacing);
 
     // Chain the parts into closed curves (or open ones, should round-off
     // break a join) by matching the end of one to the start of the next
+    const scalar joinTolerance = 1e-8*size_;
     const label nPieces = label(pieces.size());
     std::vector<bool> used(nPieces, false);
     for (label first = 0; first < nPieces; ++first)
@@ -462,131 +702,10 @@ void Foam::polygonShape::appendLayer
         {
             continue;
         }
-        std::vector<label> chain(1, first);
-        used[first] = true;
         bool closed = false;
-        while (true)
-        {
-            const layerPiece& last = pieces[chain.back()];
-            const vector2D end = last.at(last.end);
-            if (mag(pieces[first].at(pieces[first].begin) - end) < joinTolerance
-             && chain.size() > 1)
-            {
-                closed = true;
-                break;
-            }
-            // The next part round the polygon first, any other after
-            label next = -1;
-            for (label k = 1; k <= nPieces && next < 0; ++k)
-            {
-                const label candidate = (chain.back() + k) % nPieces;
-                const layerPiece& p = pieces[candidate];
-                if
-                (
-                    (!used[candidate] || candidate == first)
-                 && mag(p.at(p.begin) - end) < joinTolerance
-                )
-                {
-                    next = candidate;
-                }
-            }
-            if (next == first)
-            {
-                closed = true;
-                break;
-            }
-            if (next < 0)
-            {
-                break;
-            }
-            chain.push_back(next);
-            used[next] = true;
-        }
-
-        // Kinks: joins where the direction jumps (mitre points, and the
-        // meeting points of a thin part); an arc joins its edges smoothly
-        const label m = label(chain.size());
-        auto kinkAfter = [&](const label k)
-        {
-            if (k == m - 1 && !closed)
-            {
-                return true;
-            }
-            const layerPiece& a = pieces[chain[k]];
-            const layerPiece& b = pieces[chain[(k + 1) % m]];
-            const vector2D ta = a.tangentAt(a.end);
-            const vector2D tb = b.tangentAt(b.begin);
-            // Angles below 1e-6 rad are round-off of collinear edges
-            return std::abs(cross2D(ta, tb)) > 1e-6 || (ta & tb) < 0;
-        };
-
-        std::vector<label> kinks;
-        for (label k = 0; k < m; ++k)
-        {
-            if (kinkAfter(k))
-            {
-                kinks.push_back(k);
-            }
-        }
-
-        // Stretches from one kink to the next: particles at the kink and
-        // evenly along; a closed curve without kinks is one stretch
-        auto placeStretch = [&](const label firstPiece, const label nParts, const bool withEnd)
-        {
-            scalar length = 0;
-            for (label k = 0; k < nParts; ++k)
-            {
-                length += pieces[chain[(firstPiece + k) % m]].length();
-            }
-            const label nSteps = nIntervals(length, spacing);
-            const label nPoints = withEnd ? nSteps + 1 : nSteps;
-            label part = 0;
-            scalar partStart = 0;
-            for (label j = 0; j < nPoints; ++j)
-            {
-                const scalar s = length*j/nSteps;
-                while
-                (
-                    part < nParts - 1
-                 && s > partStart + pieces[chain[(firstPiece + part) % m]].length()
-                )
-                {
-                    partStart += pieces[chain[(firstPiece + part) % m]].length();
-                    ++part;
-                }
-                const layerPiece& p = pieces[chain[(firstPiece + part) % m]];
-                appendParticle
-                (
-                    p.atLength(std::min(s - partStart, p.length())),
-                    layer,
-                    candidates
-                );
-            }
-        };
-
-        if (closed && kinks.empty())
-        {
-            placeStretch(0, m, false);
-        }
-        else if (closed)
-        {
-            for (size_t k = 0; k < kinks.size(); ++k)
-            {
-                const label begin = (kinks[k] + 1) % m;
-                const label endKink = kinks[(k + 1) % kinks.size()];
-                const label nParts = (endKink - kinks[k] + m - 1) % m + 1;
-                placeStretch(begin, nParts, false);
-            }
-        }
-        else
-        {
-            label begin = 0;
-            for (size_t k = 0; k < kinks.size(); ++k)
-            {
-                placeStretch(begin, kinks[k] - begin + 1, k + 1 == kinks.size());
-                begin = kinks[k] + 1;
-            }
-        }
+        const std::vector<layerPiece> curve =
+            nextCurve(pieces, first, joinTolerance, used, closed);
+        appendCurve(curve, closed, layer, spacing, candidates);
     }
 }
 

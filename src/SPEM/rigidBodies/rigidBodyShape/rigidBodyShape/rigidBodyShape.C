@@ -10,6 +10,108 @@ namespace Foam
 }
 
 
+// * * * * * * * * * * * * * * * Local Functions * * * * * * * * * * * * * * //
+
+namespace
+{
+
+using namespace Foam;
+
+//- A closed loop of points ((X, Y) interleaved, either orientation) for ear
+//  clipping: its orientation and a round-off scale for areas
+class earClippingLoop
+{
+    const std::vector<scalar>& loop_;
+    scalar sign_;
+    scalar tol_;
+
+public:
+
+    explicit earClippingLoop(const std::vector<scalar>& loop)
+    :
+        loop_(loop)
+    {
+        const label n = size();
+
+        // Orientation (shoelace) and a round-off scale for areas
+        scalar twiceArea = 0, xMin = GREAT, xMax = -GREAT, yMin = GREAT,
+            yMax = -GREAT;
+        for (label i = 0; i < n; ++i)
+        {
+            const label j = (i + 1) % n;
+            twiceArea += X(i)*Y(j) - X(j)*Y(i);
+            xMin = std::min(xMin, X(i));
+            xMax = std::max(xMax, X(i));
+            yMin = std::min(yMin, Y(i));
+            yMax = std::max(yMax, Y(i));
+        }
+        sign_ = twiceArea < 0 ? -1 : 1;
+        tol_ =
+            1e-12*(sqr(xMax - xMin) + sqr(yMax - yMin));
+    }
+
+    label size() const { return label(loop_.size()/2); }
+    scalar X(const label i) const { return loop_[2*i]; }
+    scalar Y(const label i) const { return loop_[2*i + 1]; }
+
+    //- +1 if the loop is counter-clockwise, -1 if clockwise
+    scalar sign() const { return sign_; }
+
+    //- Areas within this of zero are round-off
+    scalar tol() const { return tol_; }
+
+    //- Twice the signed area of (a, b, c), positive if counter-clockwise
+    //  along the loop's own orientation
+    scalar turn(const label a, const label b, const label c) const
+    {
+        return sign_
+           *(
+                (X(b) - X(a))*(Y(c) - Y(a)) - (Y(b) - Y(a))*(X(c) - X(a))
+            );
+    }
+
+    //- True if no remaining vertex other than a, b, c lies in or on the
+    //  triangle (a, b, c)
+    bool isEar
+    (
+        const std::vector<label>& remaining,
+        const label a,
+        const label b,
+        const label c
+    ) const
+    {
+        const label m = label(remaining.size());
+        bool ear = true;
+        for (label q = 0; q < m && ear; ++q)
+        {
+            const label p = remaining[q];
+            if (p == a || p == b || p == c) continue;
+            ear =
+                turn(a, b, p) < -tol_ || turn(b, c, p) < -tol_
+             || turn(c, a, p) < -tol_;
+        }
+        return ear;
+    }
+
+    //- Append the triangle (a, b, c), counter-clockwise in the plane
+    //  whatever the loop's orientation
+    void emit
+    (
+        const label a,
+        const label b,
+        const label c,
+        std::vector<label>& triangles
+    ) const
+    {
+        triangles.push_back(a);
+        triangles.push_back(sign_ > 0 ? b : c);
+        triangles.push_back(sign_ > 0 ? c : b);
+    }
+};
+
+} // End anonymous namespace
+
+
 void Foam::bodyWallParticles::append
 (
     const vector2D& position,
@@ -129,48 +231,15 @@ std::vector<Foam::label> Foam::rigidBodyShape::triangulate
     const std::vector<scalar>& loop
 )
 {
-    const label n = label(loop.size()/2);
-    auto X = [&loop](const label i) { return loop[2*i]; };
-    auto Y = [&loop](const label i) { return loop[2*i + 1]; };
-
-    // Orientation (shoelace) and a round-off scale for areas
-    scalar twiceArea = 0, xMin = GREAT, xMax = -GREAT, yMin = GREAT,
-        yMax = -GREAT;
-    for (label i = 0; i < n; ++i)
-    {
-        const label j = (i + 1) % n;
-        twiceArea += X(i)*Y(j) - X(j)*Y(i);
-        xMin = std::min(xMin, X(i));
-        xMax = std::max(xMax, X(i));
-        yMin = std::min(yMin, Y(i));
-        yMax = std::max(yMax, Y(i));
-    }
-    const scalar sign = twiceArea < 0 ? -1 : 1;
-    const scalar tol =
-        1e-12*(sqr(xMax - xMin) + sqr(yMax - yMin));
-
-    // Twice the signed area of (a, b, c), positive if counter-clockwise
-    // along the loop's own orientation
-    auto turn = [&](const label a, const label b, const label c)
-    {
-        return sign
-           *(
-                (X(b) - X(a))*(Y(c) - Y(a)) - (Y(b) - Y(a))*(X(c) - X(a))
-            );
-    };
+    const earClippingLoop polygon(loop);
+    const label n = polygon.size();
+    const scalar tol = polygon.tol();
 
     std::vector<label> remaining(n);
     for (label i = 0; i < n; ++i) remaining[i] = i;
 
     std::vector<label> triangles;
     triangles.reserve(3*std::max(label(0), n - 2));
-    auto emit = [&](const label a, const label b, const label c)
-    {
-        triangles.push_back(a);
-        // Counter-clockwise in the plane whatever the loop's orientation
-        triangles.push_back(sign > 0 ? b : c);
-        triangles.push_back(sign > 0 ? c : b);
-    };
 
     while (remaining.size() > 3)
     {
@@ -181,7 +250,7 @@ std::vector<Foam::label> Foam::rigidBodyShape::triangulate
             const label a = remaining[(k + m - 1) % m];
             const label b = remaining[k];
             const label c = remaining[(k + 1) % m];
-            const scalar t = turn(a, b, c);
+            const scalar t = polygon.turn(a, b, c);
             if (std::abs(t) <= tol)
             {
                 // b on a straight run (or a spike): drop it, no triangle
@@ -192,17 +261,8 @@ std::vector<Foam::label> Foam::rigidBodyShape::triangulate
             if (t < 0) continue;    // reflex vertex
 
             // An ear if no other vertex lies in or on the triangle
-            bool ear = true;
-            for (label q = 0; q < m && ear; ++q)
-            {
-                const label p = remaining[q];
-                if (p == a || p == b || p == c) continue;
-                ear =
-                    turn(a, b, p) < -tol || turn(b, c, p) < -tol
-                 || turn(c, a, p) < -tol;
-            }
-            if (!ear) continue;
-            emit(a, b, c);
+            if (!polygon.isEar(remaining, a, b, c)) continue;
+            polygon.emit(a, b, c, triangles);
             remaining.erase(remaining.begin() + k);
             clipped = true;
         }
@@ -216,7 +276,10 @@ std::vector<Foam::label> Foam::rigidBodyShape::triangulate
     if (remaining.size() == 3)
     {
         const label a = remaining[0], b = remaining[1], c = remaining[2];
-        if (std::abs(turn(a, b, c)) > tol) emit(a, b, c);
+        if (std::abs(polygon.turn(a, b, c)) > tol)
+        {
+            polygon.emit(a, b, c, triangles);
+        }
     }
     return triangles;
 }
