@@ -1261,6 +1261,23 @@ TEST_F(SolverDamagedRestart, nonPositiveDensityStopsNamingTheFile)
 
 // * * * * * * * * * * * * * * * * controlDict * * * * * * * * * * * * * * * //
 
+TEST_F(Solver, misspeltCouplingEntryStopsBeforeTheFirstStep)
+{
+    // No element of the column converts: the coupling is never made, and
+    // its entries used to be read only at the first conversion
+    schemes_ =
+        "method          SPEM;\n"
+        "coupling\n{\n    interfaceVelocityCorection 0.1;\n}\n";
+    const std::string text = runExpectingFatalError();
+    expectInLog
+    (
+        text,
+        {"FATAL IO ERROR", "interfaceVelocityCorection", "system/spemSchemes"}
+    );
+    EXPECT_FALSE(contains(text, "Starting time loop")) << text;
+}
+
+
 TEST_F(Solver, misspeltControlDictEntryStopsNamingTheKnownOne)
 {
     // maxCO 0.5 used to run silently with the default 0.9

@@ -373,6 +373,15 @@ Foam::spemMethods::SPEM::SPEM
         collectCouplings();
     }
     setupConversion();
+    if (!coupling_)
+    {
+        // Made at the first conversion; its entries are checked now, not
+        // writes later
+        elementParticleCoupling
+        (
+            c.schemes, sphFluid::controls::read(c.schemes).smoothingLengthRatio
+        );
+    }
     if (bodyElements_)
     {
         // Without the nodes a restart's conversions left without elements
