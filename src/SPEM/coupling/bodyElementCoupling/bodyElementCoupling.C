@@ -778,9 +778,7 @@ void Foam::bodyElementCoupling::addBodyLoad
     scalar& M
 ) const
 {
-    F[0] += force_[2*b];
-    F[1] += force_[2*b + 1];
-    M += moment_[b];
+    addLoad(force_, moment_, b, F, M);
 }
 
 
