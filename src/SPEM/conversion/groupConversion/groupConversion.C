@@ -47,6 +47,17 @@ Foam::groupConversion::groupConversion
             << exit(FatalError);
     }
 
+    listGroupTriangles(assignGroups(mesh, fluidTriangle));
+    findNeighbours(mesh);
+}
+
+
+Foam::label Foam::groupConversion::assignGroups
+(
+    const triMesh& mesh,
+    const std::vector<bool>& fluidTriangle
+)
+{
     // The grid over the fluid elements' reference centroids
     const std::vector<scalar>& X = mesh.points();
     const std::vector<label>& tri = mesh.triangles();
@@ -91,7 +102,13 @@ Foam::groupConversion::groupConversion
         if (squareGroup[square[t]] < 0) squareGroup[square[t]] = nGroups++;
         triangleGroup_[t] = squareGroup[square[t]];
     }
+    return nGroups;
+}
 
+
+void Foam::groupConversion::listGroupTriangles(const label nGroups)
+{
+    const label nTri = triangleGroup_.size();
     groupStart_.assign(nGroups + 1, 0);
     for (label t = 0; t < nTri; ++t)
     {
@@ -109,7 +126,12 @@ Foam::groupConversion::groupConversion
             }
         }
     }
+}
 
+
+void Foam::groupConversion::findNeighbours(const triMesh& mesh)
+{
+    const label nTri = mesh.nTriangles();
     triangleNeighbours_.assign(3*nTri, -1);
     for (label t = 0; t < nTri; ++t)
     {
@@ -163,35 +185,15 @@ Foam::groupConversion::trianglesToConvert
     // criterion none: no run-time conversion, no cost
     const bool none = criterion_->type() == "none";
     if (none && forcedTriangles.empty()) return std::vector<label>();
-
-    const std::vector<scalar>& x = elements.positions();
-    const std::vector<scalar>& X = elements.referencePositions();
-    const std::vector<label>& nodes = elements.elementNodes();
-    const std::vector<label>& triangle = elements.elementTriangle();
-    const distortionCriterion& criterion = *criterion_;
-    distorted_.assign(elements.nElements(), 0);
-
-    for (label r = 0; r < elements.regions().size() && !none; ++r)
+    if (none)
     {
-        if (!elements.hasMaterial(r) || !elements.material(r).isFluid())
-        {
-            continue;
-        }
-        const label begin = elements.regions()[r].elemBegin;
-        const label end = elements.regions()[r].elemEnd;
-
-        // Performance critical: every fluid element, every step
-        #pragma omp parallel for schedule(static) if(end - begin > minParallelLoop)
-        for (label el = begin; el < end; ++el)
-        {
-            const label* n = &nodes[3*el];
-            distorted_[el] = criterion.distorted
-            (
-                &x[2*n[0]], &x[2*n[1]], &x[2*n[2]],
-                &X[2*n[0]], &X[2*n[1]], &X[2*n[2]]
-            );
-        }
+        distorted_.assign(elements.nElements(), 0);
     }
+    else
+    {
+        markDistorted(elements);
+    }
+    const std::vector<label>& triangle = elements.elementTriangle();
 
     std::vector<bool> convert(nGroups(), false);
     bool any = false;
@@ -227,7 +229,51 @@ Foam::groupConversion::trianglesToConvert
             }
         }
     }
+    addRemnants(elements, out, converting);
+    std::sort(out.begin(), out.end());
+    return out;
+}
 
+
+void Foam::groupConversion::markDistorted(const elementModel& elements)
+{
+    const std::vector<scalar>& x = elements.positions();
+    const std::vector<scalar>& X = elements.referencePositions();
+    const std::vector<label>& nodes = elements.elementNodes();
+    const distortionCriterion& criterion = *criterion_;
+    distorted_.assign(elements.nElements(), 0);
+
+    for (label r = 0; r < elements.regions().size(); ++r)
+    {
+        if (!elements.hasMaterial(r) || !elements.material(r).isFluid())
+        {
+            continue;
+        }
+        const label begin = elements.regions()[r].elemBegin;
+        const label end = elements.regions()[r].elemEnd;
+
+        // Performance critical: every fluid element, every step
+        #pragma omp parallel for schedule(static) if(end - begin > minParallelLoop)
+        for (label el = begin; el < end; ++el)
+        {
+            const label* n = &nodes[3*el];
+            distorted_[el] = criterion.distorted
+            (
+                &x[2*n[0]], &x[2*n[1]], &x[2*n[2]],
+                &X[2*n[0]], &X[2*n[1]], &X[2*n[2]]
+            );
+        }
+    }
+}
+
+
+void Foam::groupConversion::addRemnants
+(
+    const elementModel& elements,
+    std::vector<label>& out,
+    std::vector<bool>& converting
+) const
+{
     // Remnants: fluid elements left with at most one fluid element
     // neighbour, peeled until none is left (a queue over the neighbours of
     // what converts)
@@ -259,8 +305,6 @@ Foam::groupConversion::trianglesToConvert
             }
         }
     }
-    std::sort(out.begin(), out.end());
-    return out;
 }
 
 

@@ -5,6 +5,64 @@
 #include <cmath>
 #include <limits>
 
+namespace
+{
+
+using namespace Foam;
+
+//- The free surface of region r: the highest node (height against
+//  gravity g) of the edges the region shares with a freeSurface patch or a
+//  void region; -max() if none
+scalar freeSurfaceHeight
+(
+    const triMesh& mesh,
+    const List<patchType>& patchTypes,
+    const PtrList<spemMaterial>& materials,
+    const label r,
+    const scalar gx,
+    const scalar gy
+)
+{
+    const std::vector<scalar>& x = mesh.points();
+    const std::vector<label>& triRegion = mesh.triangleRegion();
+
+    // Patch of each edge, -1 for interior edges
+    std::vector<label> edgePatch(mesh.nEdges(), -1);
+    for (label s = 0; s < mesh.nSegments(); ++s)
+    {
+        edgePatch[mesh.segmentEdge()[s]] = mesh.segmentPatch()[s];
+    }
+    const scalar g = std::sqrt(gx*gx + gy*gy);
+
+    scalar eta = -std::numeric_limits<scalar>::max();
+    for (label e = 0; e < mesh.nEdges(); ++e)
+    {
+        const label t0 = mesh.edgeTriangles()[2*e];
+        const label t1 = mesh.edgeTriangles()[2*e + 1];
+        const bool in0 = triRegion[t0] == r;
+        const bool in1 = t1 >= 0 && triRegion[t1] == r;
+        if (in0 == in1) continue;
+        const label other = in0 ? t1 : t0;
+        const bool free =
+            other < 0
+          ? (
+                edgePatch[e] >= 0
+             && patchTypes[edgePatch[e]] == patchType::freeSurface
+            )
+          : !materials.set(triRegion[other]);
+        if (!free) continue;
+        for (label k = 0; k < 2; ++k)
+        {
+            const label n = mesh.edges()[2*e + k];
+            eta = std::max(eta, -(gx*x[2*n] + gy*x[2*n + 1])/g);
+        }
+    }
+    return eta;
+}
+
+} // End anonymous namespace
+
+
 // * * * * * * * * * * * * * * * * * Function  * * * * * * * * * * * * * * * //
 
 std::vector<Foam::scalar> Foam::initialDensity
@@ -27,13 +85,6 @@ std::vector<Foam::scalar> Foam::initialDensity
     {
         const label r = triRegion[t];
         if (materials.set(r)) rho[t] = materials[r].rho();
-    }
-
-    // Patch of each edge, -1 for interior edges
-    std::vector<label> edgePatch(mesh.nEdges(), -1);
-    for (label s = 0; s < mesh.nSegments(); ++s)
-    {
-        edgePatch[mesh.segmentEdge()[s]] = mesh.segmentPatch()[s];
     }
 
     const scalar g = std::sqrt(gx*gx + gy*gy);
@@ -59,31 +110,8 @@ std::vector<Foam::scalar> Foam::initialDensity
                 << " needs gravity (constant/g)" << exit(FatalIOError);
         }
 
-        // The free surface: the highest node of the edges the region
-        // shares with a freeSurface patch or a void region
-        scalar eta = -std::numeric_limits<scalar>::max();
-        for (label e = 0; e < mesh.nEdges(); ++e)
-        {
-            const label t0 = mesh.edgeTriangles()[2*e];
-            const label t1 = mesh.edgeTriangles()[2*e + 1];
-            const bool in0 = triRegion[t0] == r;
-            const bool in1 = t1 >= 0 && triRegion[t1] == r;
-            if (in0 == in1) continue;
-            const label other = in0 ? t1 : t0;
-            const bool free =
-                other < 0
-              ? (
-                    edgePatch[e] >= 0
-                 && patchTypes[edgePatch[e]] == patchType::freeSurface
-                )
-              : !materials.set(triRegion[other]);
-            if (!free) continue;
-            for (label k = 0; k < 2; ++k)
-            {
-                const label n = mesh.edges()[2*e + k];
-                eta = std::max(eta, height(x[2*n], x[2*n + 1]));
-            }
-        }
+        const scalar eta =
+            freeSurfaceHeight(mesh, patchTypes, materials, r, gx, gy);
         if (eta == -std::numeric_limits<scalar>::max())
         {
             FatalIOErrorInFunction(dict)
