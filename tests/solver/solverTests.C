@@ -1241,6 +1241,19 @@ TEST_F(SolverDamagedRestart, nonPositiveDensityStopsNamingTheFile)
 
 // * * * * * * * * * * * * * * * * controlDict * * * * * * * * * * * * * * * //
 
+TEST_F(Solver, probeOutsideTheMeshStopsBeforeTheFirstStep)
+{
+    // It used to write NaN on every line without a word
+    functions_ =
+        "    probes\n    {\n"
+        "        type            pressureProbe;\n"
+        "        probeLocations  ((0.25 0.05 0) (2.5 0.5 0));\n    }\n";
+    const std::string text = runExpectingFatalError();
+    expectInLog(text, {"FATAL ERROR", "probe 1", "(2.5 0.5)", "outside the mesh"});
+    EXPECT_FALSE(contains(text, "\nTime = ")) << text;
+}
+
+
 TEST_F(Solver, misspeltCouplingEntryStopsBeforeTheFirstStep)
 {
     // No element of the column converts: the coupling is never made, and

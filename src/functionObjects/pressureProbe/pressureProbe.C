@@ -24,7 +24,8 @@ Foam::functionObjects::pressureProbe::pressureProbe
 :
     spemFunctionObject(name, runTime, dict),
     normalOffset_(0),
-    body_(-1)
+    body_(-1),
+    checked_(false)
 {
     read(dict);
     wordList columns(locations_.size()/2);
@@ -121,9 +122,50 @@ Foam::functionObjects::pressureProbe::currentLocations()
 }
 
 
+void Foam::functionObjects::pressureProbe::checkInsideMesh()
+{
+    if (checked_) return;
+    checked_ = true;
+    const triMesh& mesh = model().mesh();
+    const std::vector<scalar>& X = mesh.points();
+    const std::vector<label>& tri = mesh.triangles();
+    const std::vector<scalar>& probes =
+        bodyName_.empty() ? locations_ : referenceLocations_;
+    for (size_t i = 0; i < probes.size()/2; ++i)
+    {
+        const scalar px = probes[2*i], py = probes[2*i + 1];
+        bool inside = false;
+        for (label t = 0; t < mesh.nTriangles() && !inside; ++t)
+        {
+            // Barycentric coordinates, with a round-off margin for a probe
+            // on a wall
+            const label* n = &tri[3*t];
+            const scalar x0 = X[2*n[0]], y0 = X[2*n[0] + 1];
+            const scalar ax = X[2*n[1]] - x0, ay = X[2*n[1] + 1] - y0;
+            const scalar bx = X[2*n[2]] - x0, by = X[2*n[2] + 1] - y0;
+            const scalar det = ax*by - ay*bx;
+            const scalar s = ((px - x0)*by - (py - y0)*bx)/det;
+            const scalar r = (ax*(py - y0) - ay*(px - x0))/det;
+            const scalar tol = 1e-9;
+            inside = s >= -tol && r >= -tol && s + r <= 1 + tol;
+        }
+        if (!inside)
+        {
+            FatalErrorInFunction
+                << "Function object " << name() << ": probe " << label(i)
+                << " of probeLocations, (" << px << ' ' << py << ")"
+                << (bodyName_.empty() ? "" : " (with its normalOffset)")
+                << ", is outside the mesh: it would read nothing (NaN)"
+                << " at every write" << exit(FatalError);
+        }
+    }
+}
+
+
 bool Foam::functionObjects::pressureProbe::execute()
 {
     findBody();
+    checkInsideMesh();
     return spemFunctionObject::execute();
 }
 
