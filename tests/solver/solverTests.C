@@ -1241,6 +1241,22 @@ TEST_F(SolverDamagedRestart, nonPositiveDensityStopsNamingTheFile)
 
 // * * * * * * * * * * * * * * * * controlDict * * * * * * * * * * * * * * * //
 
+TEST_F(Solver, logGivesTheStepCountToEndTimeAndTheProgress)
+{
+    // deltaT 1 ms to 0.02 s, logged every 10 steps
+    const std::string text = runExpectingSuccess();
+    expectInLog
+    (
+        text,
+        {
+            "Time step: stable", "fixed 0.001 s", "about 20 steps to endTime",
+            "Progress: 50 % of endTime", "Progress: 100 % of endTime",
+            "steps/s, ETA 0 s"
+        }
+    );
+}
+
+
 TEST_F(Solver, probeOutsideTheMeshStopsBeforeTheFirstStep)
 {
     // It used to write NaN on every line without a word

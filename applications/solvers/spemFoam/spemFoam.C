@@ -51,6 +51,7 @@ int main(int argc, char *argv[])
     model.evaluate();
     model.write(runTime.timeIndex() == 0);
     timeStep.check(model.stableDeltaT());
+    timeStep.reportStart(Info, model.stableDeltaT());
 
     Info<< "Starting time loop" << nl << endl;
 
@@ -70,7 +71,9 @@ int main(int argc, char *argv[])
                 << ", Courant number = " << timeStep.courantNumber()
                 << ", step " << runTime.timeIndex() << nl;
             model.report(Info);
-            Info<< nl << "ExecutionTime = " << runTime.elapsedCpuTime()
+            Info<< nl;
+            timeStep.reportProgress(Info);
+            Info<< "ExecutionTime = " << runTime.elapsedCpuTime()
                 << " s  ClockTime = " << runTime.elapsedClockTime() << " s"
                 << nl << endl;
         }

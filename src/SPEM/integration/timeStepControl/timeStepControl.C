@@ -124,7 +124,8 @@ Foam::timeStepControl::timeStepControl(Time& runTime)
       : GREAT
     ),
     startTime_(runTime.startTime().value()),
-    stableDeltaT_(GREAT)
+    stableDeltaT_(GREAT),
+    wallStart_(std::chrono::steady_clock::now())
 {
     checkControlDict();
     const dictionary& controls = runTime.controlDict();
@@ -158,6 +159,41 @@ void Foam::timeStepControl::check(const scalar stable) const
             << nl << "    Reduce deltaT below " << maxCo_*stable
             << " or set adjustTimeStep yes." << exit(FatalIOError);
     }
+}
+
+
+void Foam::timeStepControl::reportStart
+(
+    Ostream& os,
+    const scalar stable
+) const
+{
+    const scalar dt =
+        adjustTimeStep_
+      ? min(maxCo_*stable, maxDeltaT_)
+      : runTime_.deltaTValue();
+    const scalar remaining = runTime_.endTime().value() - runTime_.value();
+    os  << "Time step: stable " << stable << " s at Courant number 1; "
+        << (adjustTimeStep_ ? "adjusted to " : "fixed ") << dt << " s"
+        << " (Courant number " << dt/stable << "); about "
+        << label(std::ceil(remaining/dt*(1 - 1e-12))) << " steps to endTime "
+        << runTime_.endTime().value() << nl << endl;
+}
+
+
+void Foam::timeStepControl::reportProgress(Ostream& os) const
+{
+    const scalar span = runTime_.endTime().value() - startTime_;
+    const scalar done = span > 0 ? (runTime_.value() - startTime_)/span : 1;
+    const scalar wall =
+        std::chrono::duration<scalar>
+        (
+            std::chrono::steady_clock::now() - wallStart_
+        ).count();
+    const label steps = runTime_.timeIndex() - runTime_.startTimeIndex();
+    os  << "Progress: " << std::round(1000*done)/10 << " % of endTime, "
+        << (wall > 0 ? std::round(10*steps/wall)/10 : 0) << " steps/s, ETA "
+        << (done > 0 ? std::round(wall*(1 - done)/done) : 0) << " s" << nl;
 }
 
 
