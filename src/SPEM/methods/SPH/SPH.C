@@ -46,8 +46,7 @@ Foam::spemMethods::SPH::fluidTriangles
                 << " structures, or make the region a fluid or void"
                 << exit(FatalIOError);
         }
-        if (fluid && (f->rho() != fluid->rho() || f->c() != fluid->c()
-                   || f->kinematicViscosity() != fluid->kinematicViscosity()))
+        if (!sameFluid(fluid, *f))
         {
             FatalIOErrorInFunction(case_.properties)
                 << "Fluid regions with different rho, c or mu: the particle"

@@ -213,15 +213,7 @@ std::vector<bool> Foam::spemMethod::surveyFluidElements(scalar& maxArea)
                 << "Fluid region " << mesh.regionNames()[r] << " ("
                 << mat.type() << ") cannot become particles" << exit(FatalError);
         }
-        const weaklyCompressibleNewtonian* g = elementFluid_;
-        if
-        (
-            g
-         && (
-                f->rho() != g->rho() || f->c() != g->c()
-             || f->kinematicViscosity() != g->kinematicViscosity()
-            )
-        )
+        if (!sameFluid(elementFluid_, *f))
         {
             FatalIOErrorInFunction(case_.properties)
                 << "Fluid regions with different rho, c or mu: the particles"
@@ -334,6 +326,21 @@ std::vector<Foam::label> Foam::spemMethod::trianglesInsideBodies() const
         }
     }
     return inside;
+}
+
+
+bool Foam::spemMethod::sameFluid
+(
+    const weaklyCompressibleNewtonian* first,
+    const weaklyCompressibleNewtonian& other
+)
+{
+    return
+        !first
+     || (
+            first->rho() == other.rho() && first->c() == other.c()
+         && first->kinematicViscosity() == other.kinematicViscosity()
+        );
 }
 
 
