@@ -57,7 +57,10 @@ void Foam::spemMethod::createElementHalf
     elements_->setConstraints(std::move(c), std::move(normal));
     elements_->setGravity(case_.g[0], case_.g[1]);
     elements_->setMassDamping(case_.massDamping);
-    case_.restart.readElements(*elements_);
+    if (case_.restart.readElements(*elements_))
+    {
+        elements_->setPreviousDeltaT(case_.restart.readPreviousDeltaT());
+    }
 }
 
 
@@ -115,6 +118,14 @@ void Foam::spemMethod::createParticleHalf
         )
     );
     particles_->setMassDamping(case_.massDamping);
+    // The particles continue the elements' leapfrog (converted mid-run) or
+    // the restart state's
+    particles_->setPreviousDeltaT
+    (
+        elements_
+      ? elements_->previousDeltaT()
+      : case_.restart.readPreviousDeltaT()
+    );
     createStructureCouplings(fluid.rho(), spacing, layers, h);
 
     if (!rhoOld.empty())
@@ -492,6 +503,10 @@ Foam::restartState::content Foam::spemMethod::state() const
         c.virtualParticles = &structureCoupling_->acceleration();
     }
     if (bodyCoupling_) c.bodyParticles = &bodyCoupling_->acceleration();
+    c.previousDeltaT =
+        elements_
+      ? elements_->previousDeltaT()
+      : particles_ ? particles_->previousDeltaT() : -1;
     return c;
 }
 

@@ -474,6 +474,7 @@ Foam::elementModel::elementModel
     x_{mesh.points(), mesh.points()},
     v_{std::vector<scalar>(2*nNodes_, 0), std::vector<scalar>(2*nNodes_, 0)},
     cur_(0),
+    previousDeltaT_{0, 0},
     nodeConstraint_(nNodes_, constraint::free),
     nodeNormal_(2*nNodes_, 0),
     nodeNormalSpeed_(nNodes_, 0),
@@ -594,9 +595,12 @@ bool Foam::elementModel::advance(const scalar dt)
     scalar* vNew = v_[1 - cur_].data();
     const scalar* force = elemForce_.data();
     const scalar gx = gravity_[0], gy = gravity_[1];
+    // The velocity spans dt^n = (dt^{n-1/2} + dt^{n+1/2})/2, from the
+    // half step before to the half step after the forces' time.
     // Semi-implicit mass-proportional damping: stable for any alpha dt
-    const scalar damp = 0.5*massDamping_*dt;
-    const scalar keep = (1 - damp)/(1 + damp), gain = dt/(1 + damp);
+    const scalar span = 0.5*(previousDeltaT_[cur_] + dt);
+    const scalar damp = 0.5*massDamping_*span;
+    const scalar keep = (1 - damp)/(1 + damp), gain = span/(1 + damp);
     bool finite = true;
 
     scalar* reaction = nodeReaction_.data();
@@ -654,6 +658,7 @@ bool Foam::elementModel::advance(const scalar dt)
         finite = finite && std::isfinite(vn[0]) && std::isfinite(vn[1]);
     }
     cur_ = 1 - cur_;
+    previousDeltaT_[cur_] = dt;
     if (!finite)
     {
         failure_ = "a node velocity is not finite";

@@ -365,6 +365,8 @@ Foam::sphFluid::sphFluid
     freshIdBegin_(0),
     massDamping_(0),
     pendingDeltaT_(0),
+    previousDeltaT_(0),
+    oldPreviousDeltaT_(0),
     stepsSinceReorder_(reorderInterval),
     stableDeltaT_(GREAT),
     wallForce_{0, 0},
@@ -864,16 +866,20 @@ bool Foam::sphFluid::advance(const scalar dt)
     const particleSet::kind* __restrict__ kind = particles_.kinds().data();
     const scalar A = controls_.shifting;
     const scalar threshold = controls_.freeSurfaceThreshold;
-    const scalar damp = 1/(1 + massDamping_*dt);
+    // The velocity spans dt^n = (dt^{n-1/2} + dt^{n+1/2})/2, from the
+    // half step before to the half step after the accelerations' time;
+    // semi-implicit mass-proportional damping, as the element half
+    const scalar span = 0.5*(previousDeltaT_ + dt);
+    const scalar damp = 0.5*massDamping_*span;
+    const scalar keep = (1 - damp)/(1 + damp), gain = span/(1 + damp);
 
     #pragma omp parallel for schedule(static) if(n > minParallelLoop)
     for (label i = 0; i < n; ++i)
     {
         if (kind[i] != particleSet::kind::fluid) continue;
 
-        // Semi-implicit mass-proportional damping, as the element half
-        const scalar vx = (v[2*i] + dt*a[2*i])*damp;
-        const scalar vy = (v[2*i + 1] + dt*a[2*i + 1])*damp;
+        const scalar vx = keep*v[2*i] + gain*a[2*i];
+        const scalar vy = keep*v[2*i + 1] + gain*a[2*i + 1];
         v[2*i] = vx;
         v[2*i + 1] = vy;
 
@@ -888,6 +894,8 @@ bool Foam::sphFluid::advance(const scalar dt)
         x[2*i + 1] += dt*vy + sy;
     }
     pendingDeltaT_ = dt;
+    oldPreviousDeltaT_ = previousDeltaT_;
+    previousDeltaT_ = dt;
     return true;
 }
 
@@ -1114,6 +1122,7 @@ void Foam::sphFluid::revert()
     particles_.velocities() = oldVelocity_;
     particles_.density() = oldDensity_;
     pendingDeltaT_ = 0;
+    previousDeltaT_ = oldPreviousDeltaT_;
 }
 
 

@@ -254,6 +254,12 @@ void Foam::restartState::write(const content& c) const
         writeAcceleration("virtualParticle", *c.virtualParticles);
     }
     if (c.bodyParticles) writeAcceleration("bodyParticle", *c.bodyParticles);
+    if (c.previousDeltaT >= 0)
+    {
+        IOdictionary step(outFile("timeStep"));
+        step.add("previousDeltaT", c.previousDeltaT);
+        writeExact(step, true);
+    }
     if (c.bodies && !c.bodies->empty())
     {
         IOdictionary state(outFile("rigidBodies"));
@@ -498,6 +504,23 @@ bool Foam::restartState::readBodies(rigidBodies& bodies) const
     Info<< "Restart: read the rigid bodies' state from " << bIO.objectPath()
         << nl;
     return true;
+}
+
+
+Foam::scalar Foam::restartState::readPreviousDeltaT() const
+{
+    if (!restarting()) return 0;
+    const IOobject io(file("timeStep"));
+    if (!listed<IOdictionary>(io))
+    {
+        bad(io, "missing: the state has no step history");
+    }
+    const scalar dt = IOdictionary(io).get<scalar>("previousDeltaT");
+    if (!(std::isfinite(dt) && dt >= 0))
+    {
+        bad(io, "previousDeltaT is not a finite non-negative step");
+    }
+    return dt;
 }
 
 
