@@ -7,6 +7,17 @@
 #include <cmath>
 #include <type_traits>
 
+// * * * * * * * * * * * * * * * Static Data  * * * * * * * * * * * * * * * //
+
+const Foam::Enum<Foam::elementParticleCoupling::interfaceForceType>
+Foam::elementParticleCoupling::interfaceForceTypeNames
+({
+    {interfaceForceType::interfaceReaction, "interfaceReaction"},
+    {interfaceForceType::ghostReaction, "ghostReaction"},
+    {interfaceForceType::traction, "traction"},
+});
+
+
 // * * * * * * * * * * * * * * * * Constructors  * * * * * * * * * * * * * * //
 
 Foam::elementParticleCoupling::elementParticleCoupling
@@ -15,13 +26,15 @@ Foam::elementParticleCoupling::elementParticleCoupling
     const scalar smoothingLengthRatio
 )
 :
+    interfaceForce_(interfaceForceType::traction),
+    imbalance_{0, 0},
     velocityCorrection_(0.1),
     smoothingLengthRatio_(smoothingLengthRatio)
 {
     const dictionary* d = schemesDict.findDict("coupling");
     if (d)
     {
-        checkKeywords(*d, {"interfaceVelocityCorrection"});
+        checkKeywords(*d, {"interfaceVelocityCorrection", "interfaceForce"});
         velocityCorrection_ =
             d->getOrDefault<scalar>
             (
@@ -34,6 +47,11 @@ Foam::elementParticleCoupling::elementParticleCoupling
                 << " must lie in [0, 1], found " << velocityCorrection_
                 << exit(FatalIOError);
         }
+        interfaceForce_ =
+            interfaceForceTypeNames.getOrDefault
+            (
+                "interfaceForce", *d, interfaceForce_
+            );
     }
 }
 
@@ -113,7 +131,7 @@ void Foam::elementParticleCoupling::binParticles(const sphFluid& particles)
 void Foam::elementParticleCoupling::correctVelocities
 (
     elementModel& elements,
-    const sphFluid& particles,
+    sphFluid& particles,
     const scalar dt
 )
 {
@@ -121,8 +139,10 @@ void Foam::elementParticleCoupling::correctVelocities
     const particleSet& ps = particles.particles();
     const std::vector<scalar>& x = elements.positions();
     const std::vector<scalar>& v = elements.velocities();
+    const std::vector<scalar>& mNode = elements.nodeMass();
     const std::vector<elementModel::constraint>& c = elements.constraints();
     const scalar phi = velocityCorrection_;
+    particleDv_.assign(2*ps.size(), 0);
 
     particles.kernel().visit
     (
@@ -144,15 +164,32 @@ void Foam::elementParticleCoupling::correctVelocities
                         const scalar VW =
                             ps.mass()[j]/ps.density()[j]
                            *Kernel::W(r, ps.smoothingLength()[j]);
-                        du -= VW*(un - ps.velocities()[2*j]);
-                        dv -= VW*(vn - ps.velocities()[2*j + 1]);
+                        const scalar ex = phi*VW*(un - ps.velocities()[2*j]);
+                        const scalar ey =
+                            phi*VW*(vn - ps.velocities()[2*j + 1]);
+                        du -= ex;
+                        dv -= ey;
+                        // The particle gives the momentum the node gains
+                        const scalar share = mNode[n]/ps.mass()[j];
+                        particleDv_[2*j] += share*ex;
+                        particleDv_[2*j + 1] += share*ey;
                     }
                 );
                 // Eq. (26)
-                elements.correctVelocity(n, phi*du, phi*dv, dt);
+                elements.correctVelocity(n, du, dv, dt);
             }
         }
     );
+    for (label j = 0; j < ps.size(); ++j)
+    {
+        if (particleDv_[2*j] != 0 || particleDv_[2*j + 1] != 0)
+        {
+            particles.correctVelocity
+            (
+                j, particleDv_[2*j], particleDv_[2*j + 1], dt
+            );
+        }
+    }
 }
 
 
@@ -170,6 +207,7 @@ void Foam::elementParticleCoupling::setGhosts
     const std::vector<scalar>& area = elements.elementArea();
     const scalar kappa = particles.kernel().support();
 
+    ghostElement_.clear();
     ghostX_.clear();
     ghostV_.clear();
     ghostRho_.clear();
@@ -189,10 +227,12 @@ void Foam::elementParticleCoupling::setGhosts
             const label* n = &nodes[3*el];
             const scalar cx = (x[2*n[0]] + x[2*n[1]] + x[2*n[2]])/3;
             const scalar cy = (x[2*n[0] + 1] + x[2*n[1] + 1] + x[2*n[2] + 1])/3;
+            // Within the pair reach kappa h_ij of a fluid particle
+            const scalar hGhost = smoothingLengthRatio_*std::sqrt(area[el]);
             bool reached = false;
-            cells_.forEachParticleNear
+            cells_.forEachParticleInReach
             (
-                ps, cx, cy, kappa,
+                ps, cx, cy, hGhost, kappa,
                 [&](const label j, const scalar, const scalar, const scalar)
                 {
                     reached =
@@ -202,13 +242,14 @@ void Foam::elementParticleCoupling::setGhosts
             if (!reached) continue;
 
             // Eq. (17) with equal nodal shares, eq. (18)
+            ghostElement_.push_back(el);
             ghostX_.push_back(cx);
             ghostX_.push_back(cy);
             ghostV_.push_back((v[2*n[0]] + v[2*n[1]] + v[2*n[2]])/3);
             ghostV_.push_back((v[2*n[0] + 1] + v[2*n[1] + 1] + v[2*n[2] + 1])/3);
             ghostRho_.push_back(mass[el]/area[el]);
             ghostM_.push_back(mass[el]);
-            ghostH_.push_back(smoothingLengthRatio_*std::sqrt(area[el]));
+            ghostH_.push_back(hGhost);
         }
     }
 
@@ -289,6 +330,112 @@ void Foam::elementParticleCoupling::interfaceTraction
 }
 
 
+void Foam::elementParticleCoupling::ghostReaction
+(
+    elementModel& elements,
+    const sphFluid& particles
+) const
+{
+    std::vector<scalar>& f = elements.externalForce();
+    const std::vector<label>& nodes = elements.elementNodes();
+    const std::vector<scalar>& F = particles.ghostParticleForce();
+    for (label g = 0; g < label(ghostElement_.size()); ++g)
+    {
+        const label* n = &nodes[3*ghostElement_[g]];
+        for (label a = 0; a < 3; ++a)
+        {
+            f[2*n[a]] += F[2*g]/3;
+            f[2*n[a] + 1] += F[2*g + 1]/3;
+        }
+    }
+}
+
+
+void Foam::elementParticleCoupling::interfaceReaction
+(
+    elementModel& elements,
+    const sphFluid& particles
+)
+{
+    std::vector<scalar>& f = elements.externalForce();
+    if (interfaceNodes_.empty() || ghostH_.empty()) return;
+    const std::vector<scalar>& x = elements.positions();
+    const particleSet& ps = particles.particles();
+    const std::vector<scalar>& aGhost = particles.ghostAccelerations();
+
+    // The interface nodes as points of smoothing length h_g,max: the
+    // reach kappa (h_i + h_g,max)/2 covers every ghost of particle i
+    const scalar hGhost = *std::max_element(ghostH_.begin(), ghostH_.end());
+    nodePoints_.clear();
+    for (const label n : interfaceNodes_)
+    {
+        nodePoints_.append(x[2*n], x[2*n + 1], 0, 0, 1, 0, 1, hGhost);
+    }
+    const scalar kappa = particles.kernel().support();
+    nodeCells_.update
+    (
+        nodePoints_, kappa*std::max(hGhost, ps.maxSmoothingLength())
+    );
+
+    particles.kernel().visit
+    (
+        [&](const auto& k)
+        {
+            using Kernel = std::decay_t<decltype(k)>;
+            for (label i = 0; i < ps.size(); ++i)
+            {
+                const scalar Fx = -ps.mass()[i]*aGhost[2*i];
+                const scalar Fy = -ps.mass()[i]*aGhost[2*i + 1];
+                if (Fx == 0 && Fy == 0) continue;
+                const scalar xi = ps.positions()[2*i];
+                const scalar yi = ps.positions()[2*i + 1];
+                const scalar hi = ps.smoothingLength()[i];
+                const scalar hij = 0.5*(hi + hGhost);
+                scalar sumW = 0;
+                nodeCells_.forEachParticleInReach
+                (
+                    nodePoints_, xi, yi, hi, Kernel::support,
+                    [&](const label, const scalar, const scalar, const scalar r)
+                    {
+                        sumW += Kernel::W(r, hij);
+                    }
+                );
+                if (sumW > 0)
+                {
+                    nodeCells_.forEachParticleInReach
+                    (
+                        nodePoints_, xi, yi, hi, Kernel::support,
+                        [&](const label q, const scalar, const scalar, const scalar r)
+                        {
+                            const scalar w = Kernel::W(r, hij)/sumW;
+                            const label n = interfaceNodes_[q];
+                            f[2*n] += w*Fx;
+                            f[2*n + 1] += w*Fy;
+                        }
+                    );
+                    continue;
+                }
+                // No interface node in reach: the nearest one
+                label nearest = interfaceNodes_[0];
+                scalar best = GREAT;
+                for (const label n : interfaceNodes_)
+                {
+                    const scalar d =
+                        sqr(x[2*n] - xi) + sqr(x[2*n + 1] - yi);
+                    if (d < best)
+                    {
+                        best = d;
+                        nearest = n;
+                    }
+                }
+                f[2*nearest] += Fx;
+                f[2*nearest + 1] += Fy;
+            }
+        }
+    );
+}
+
+
 // * * * * * * * * * * * * * * * * * * Hooks * * * * * * * * * * * * * * * * //
 
 void Foam::elementParticleCoupling::afterConversion(couplingStep& s)
@@ -315,7 +462,38 @@ void Foam::elementParticleCoupling::beforeParticleEvaluate(couplingStep& s)
 
 void Foam::elementParticleCoupling::afterParticleEvaluate(couplingStep& s)
 {
-    interfaceTraction(*s.elements, *s.particles);
+    // The method zeroed the external forces: the sum before is that of
+    // the couplings before this one (none on fluid elements)
+    const std::vector<scalar>& f = s.elements->externalForce();
+    scalar before[2] = {0, 0};
+    for (size_t i = 0; i < f.size(); i += 2)
+    {
+        before[0] += f[i];
+        before[1] += f[i + 1];
+    }
+    switch (interfaceForce_)
+    {
+        case interfaceForceType::interfaceReaction:
+            interfaceReaction(*s.elements, *s.particles);
+            break;
+        case interfaceForceType::ghostReaction:
+            ghostReaction(*s.elements, *s.particles);
+            break;
+        case interfaceForceType::traction:
+            interfaceTraction(*s.elements, *s.particles);
+            break;
+    }
+    scalar after[2] = {0, 0};
+    for (size_t i = 0; i < f.size(); i += 2)
+    {
+        after[0] += f[i];
+        after[1] += f[i + 1];
+    }
+    for (int k = 0; k < 2; ++k)
+    {
+        imbalance_[k] =
+            after[k] - before[k] - s.particles->ghostForce()[k];
+    }
 }
 
 

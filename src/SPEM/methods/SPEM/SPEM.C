@@ -418,8 +418,11 @@ void Foam::spemMethods::SPEM::reportInterface(Ostream& os) const
 {
     if (coupling_)
     {
+        const scalar* d = coupling_->imbalance();
         os  << ", ghost particles = " << particles_->nGhost()
-            << ", interface segments = " << coupling_->nInterfaceSegments();
+            << ", interface segments = " << coupling_->nInterfaceSegments()
+            << ", interface force imbalance = (" << d[0] << ' ' << d[1]
+            << ')';
     }
     if (bodyElements_)
     {

@@ -461,6 +461,7 @@ void Foam::sphFluid::resizeFields()
 {
     const label n = particles_.size();
     acceleration_.resize(2*n, 0);
+    ghostAcceleration_.resize(2*n, 0);
     if (controls_.momentumGradient == momentumGradientType::symmetrisedCorrection)
     {
         correction_.resize(3*n, 0);
@@ -673,6 +674,7 @@ void Foam::sphFluid::momentumPass(const Kernel&)
     const particleSet::kind* __restrict__ kind = particles_.kinds().data();
     const scalar* __restrict__ C = correctionData();
     scalar* __restrict__ a = acceleration_.data();
+    scalar* __restrict__ aGhost = ghostAcceleration_.data();
 
     const scalar mu = mu_, gx = gx_, gy = gy_, c = c_;
     const scalar nu = mu_/rho0_;
@@ -686,6 +688,8 @@ void Foam::sphFluid::momentumPass(const Kernel&)
         {
             a[2*i] = 0;
             a[2*i + 1] = 0;
+            aGhost[2*i] = 0;
+            aGhost[2*i + 1] = 0;
             continue;
         }
 
@@ -726,6 +730,8 @@ void Foam::sphFluid::momentumPass(const Kernel&)
 
         a[2*i] = ax + gx;
         a[2*i + 1] = ay + gy;
+        aGhost[2*i] = gfx;
+        aGhost[2*i + 1] = gfy;
         // Force of the fluid on the walls: minus the walls' force on it
         fwx -= m[i]*wx;
         fwy -= m[i]*wy;
@@ -751,7 +757,12 @@ void Foam::sphFluid::momentumPass(const Kernel&)
 
 
 template<class Kernel>
-void Foam::sphFluid::structureForcePass(const Kernel&)
+void Foam::sphFluid::reactionPass
+(
+    const Kernel&,
+    const particleSet::kind k,
+    std::vector<scalar>& reaction
+)
 {
     const label n = particles_.size();
     const scalar kappa = Kernel::support;
@@ -763,15 +774,15 @@ void Foam::sphFluid::structureForcePass(const Kernel&)
     const particleSet::kind* __restrict__ kind = particles_.kinds().data();
     const label* __restrict__ id = particles_.id().data();
     const scalar* __restrict__ C = correctionData();
-    scalar* __restrict__ force = structureParticleForce_.data();
+    scalar* __restrict__ force = reaction.data();
     const scalar mu = mu_;
 
     // F_w = -sum_f m_f a_fw: the pair forces of the momentum pass, seen
-    // from the structure particle (a gather: no two threads write one w)
+    // from the particle w (a gather: no two threads write one w)
     #pragma omp parallel for schedule(static) if(n > minParallelLoop)
     for (label w = 0; w < n; ++w)
     {
-        if (kind[w] != particleSet::kind::structure) continue;
+        if (kind[w] != k) continue;
         scalar Fx = 0, Fy = 0;
         cells_.forEachNeighbour
         (
@@ -819,7 +830,26 @@ bool Foam::sphFluid::evaluate()
     kernel_->visit([this](const auto& k) { momentumPass(k); });
     if (nStructure_ > 0)
     {
-        kernel_->visit([this](const auto& k) { structureForcePass(k); });
+        kernel_->visit
+        (
+            [this](const auto& k)
+            {
+                reactionPass
+                (
+                    k, particleSet::kind::structure, structureParticleForce_
+                );
+            }
+        );
+    }
+    if (nGhost_ > 0)
+    {
+        kernel_->visit
+        (
+            [this](const auto& k)
+            {
+                reactionPass(k, particleSet::kind::ghost, ghostParticleForce_);
+            }
+        );
     }
 
     // A density that went non-positive or non-finite: the step failed
@@ -1104,8 +1134,9 @@ void Foam::sphFluid::setGhosts
         oldDensity_[i] = rho[g];
         // Eq. (7), as the element's pressure
         particles_.pressure()[i] = c2*(rho[g] - rho0_);
-        particles_.id()[i] = -1;
+        particles_.id()[i] = g;
     }
+    ghostParticleForce_.assign(2*n, 0);
     nGhost_ = n;
 }
 
