@@ -784,6 +784,24 @@ TEST_F(Solver, misspeltMaterialKeywordStopsNamingKeywordAndFile)
 }
 
 
+TEST_F(Solver, badSolidHypothesisStopsNamingKeywordAndFile)
+{
+    regions_ =
+        "    water\n    {\n        model   linearElastic;\n"
+        "        rho     1000;\n        E       1e6;\n"
+        "        nu      0.3;\n        hypothesis planeStres;\n    }\n";
+    const std::string text = runExpectingFatalError();
+    expectInLog
+    (
+        text,
+        {
+            "FATAL IO ERROR", "'hypothesis'", "planeStres'", "planeStress",
+            "constant/spemProperties"
+        }
+    );
+}
+
+
 TEST_F(Solver, missingMaterialKeywordStopsNamingKeywordAndFile)
 {
     regions_ =

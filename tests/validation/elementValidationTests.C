@@ -4,7 +4,9 @@ Description
     (no case files): each test prints its measured error.
       - a water column on a rigid bottom settles to hydrostatic pressure
         with no checkerboard;
-      - a cantilever under its own weight deflects as Euler-Bernoulli;
+      - a cantilever under its own weight deflects as Euler-Bernoulli, in
+        plane strain with E/(1 - nu^2) and in plane stress (a thin plate)
+        with E;
       - a freely vibrating cantilever with large rotation keeps its total
         energy without damping (St. Venant-Kirchhoff, central difference);
       - results do not depend on the number of threads.
@@ -205,10 +207,17 @@ namespace
 {
 
 // Cantilever of length Lb, thickness tb, clamped at x = 0, under its own
-// weight; nu = 0 so that plane strain and the beam agree on the modulus
+// weight; by default nu = 0 so that plane strain and the beam agree on the
+// modulus
 const scalar Lb = 1, tb = 0.05, Eb = 2.1e11, rhoB = 7800, gB = 9.81;
+const std::string beamSteel = "model linearElastic; rho 7800; E 2.1e11; nu 0;";
 
-scalar cantileverTipDeflection(const int nx, const int ny)
+scalar cantileverTipDeflection
+(
+    const int nx,
+    const int ny,
+    const std::string& material = beamSteel
+)
 {
     const triMesh mesh = testMeshes::build
     (
@@ -216,8 +225,7 @@ scalar cantileverTipDeflection(const int nx, const int ny)
     );
     auto em = testModels::model
     (
-        mesh, {{"beam", "model linearElastic; rho 7800; E 2.1e11; nu 0;"}},
-        {{"left", patchType::clamped}}
+        mesh, {{"beam", material}}, {{"left", patchType::clamped}}
     );
     em->setGravity(0, -gB);
     // First bending mode omega1 = 1.875^2 sqrt(EI/(rho A))/L^2, damped
@@ -259,6 +267,76 @@ TEST(Validation, cantileverUnderGravityDeflectsAsEulerBernoulli)
             EXPECT_LT(std::abs(error), 0.02);
         }
     }
+}
+
+
+TEST(Validation, planeStressCantileverUnderGravityDeflectsAsEulerBernoulliWithE)
+{
+    // A thin plate (a gate, a baffle) bends with E, not with the plane
+    // strain E/(1 - nu^2), 9 % stiffer at nu = 0.3: w = q L^4/(8 E I);
+    // shear adds q L^2/(2 kappa G t) = 0.26 % (kappa = 5/6, G = E/2.6).
+    // Plane strain of the same steel is run too: it must match the beam of
+    // E/(1 - nu^2), so that the test tells the hypotheses apart.
+    const scalar nu = 0.3;
+    const scalar q = rhoB*gB*tb, I = tb*tb*tb/12;
+    const scalar wEB = q*std::pow(Lb, 4)/(8*Eb*I);
+    const scalar wT = wEB + q*Lb*Lb/(2*5.0/6.0*(Eb/(2*(1 + nu)))*tb);
+    const std::string steel = "rho 7800; E 2.1e11; nu 0.3;";
+
+    scalar previousError = GREAT;
+    for (const int ny : {1, 2, 4})
+    {
+        const int nx = 20*ny;
+        const scalar w = -cantileverTipDeflection
+        (
+            nx, ny, "model linearElastic; hypothesis planeStress; " + steel
+        );
+        const scalar error = w/wEB - 1;
+        std::printf
+        (
+            "plane-stress cantilever, linearElastic nu 0.3, %dx%d cells:"
+            " tip deflection %.5e m, Euler-Bernoulli (E) %.5e m (%+.2f %%),"
+            " with shear %.5e m (%+.2f %%)\n",
+            nx, ny, w, wEB, 100*error, wT, 100*(w/wT - 1)
+        );
+        EXPECT_LT(std::abs(error), previousError) << "no convergence";
+        previousError = std::abs(error);
+    }
+    // The finest mesh, within 2 % as the plane-strain cantilever above
+    EXPECT_LT(previousError, 0.02);
+
+    // The hyperelastic models in plane stress (the deflection is 2e-4 L:
+    // small strain) on the finest mesh
+    for (const std::string model : {"saintVenantKirchhoff", "neoHookean"})
+    {
+        const scalar w = -cantileverTipDeflection
+        (
+            80, 4, "model " + model + "; hypothesis planeStress; " + steel
+        );
+        std::printf
+        (
+            "plane-stress cantilever, %s nu 0.3, 80x4 cells: tip deflection"
+            " %.5e m (%+.2f %% from Euler-Bernoulli with E)\n",
+            model.c_str(), w, 100*(w/wEB - 1)
+        );
+        EXPECT_LT(std::abs(w/wEB - 1), 0.02) << model;
+    }
+
+    // Plane strain: the beam of E/(1 - nu^2)
+    const scalar wStrain = -cantileverTipDeflection
+    (
+        80, 4, "model linearElastic; hypothesis planeStrain; " + steel
+    );
+    const scalar strainError = wStrain/(wEB*(1 - nu*nu)) - 1;
+    std::printf
+    (
+        "plane-strain cantilever, linearElastic nu 0.3, 80x4 cells: tip"
+        " deflection %.5e m, Euler-Bernoulli with E/(1 - nu^2) %+.2f %%,"
+        " with E %+.2f %%\n",
+        wStrain, 100*strainError, 100*(wStrain/wEB - 1)
+    );
+    EXPECT_LT(std::abs(strainError), 0.02);
+    EXPECT_GT(std::abs(wStrain/wEB - 1), 0.05);
 }
 
 

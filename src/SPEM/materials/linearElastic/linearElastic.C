@@ -21,7 +21,7 @@ bool Foam::linearElastic::stress
     const scalar* area, const scalar* mass, scalar* stress
 ) const
 {
-    const scalar lambda = lambda_, mu = mu_;
+    const scalar lambda = planeLambda_, mu = mu_;
     #pragma omp parallel for schedule(static) if(end - begin > minParallelLoop)
     for (label k = begin; k < end; ++k)
     {
@@ -49,10 +49,11 @@ void Foam::linearElastic::cauchyStress
     {
         const scalar* g = grad + 4*k;
         scalar* s = sigma6 + 6*(k - begin);
-        const scalar volumetric = lambda_*(g[0] + g[3]);
+        const scalar tr = g[0] + g[3];
+        const scalar volumetric = planeLambda_*tr;
         s[0] = volumetric + 2*mu_*g[0];
         s[1] = volumetric + 2*mu_*g[3];
-        s[2] = volumetric;              // plane strain
+        s[2] = planeStress() ? 0 : lambda_*tr;
         s[3] = mu_*(g[1] + g[2]);
         s[4] = 0;
         s[5] = 0;
@@ -67,11 +68,12 @@ void Foam::linearElastic::density
     const scalar* area, const scalar* mass, scalar* rho
 ) const
 {
-    // Small strain: rho0 (1 - tr eps)
+    // Small strain: rho0 (1 - tr eps), eps_zz included (plane stress)
+    const scalar zzRatio = outOfPlaneStrainRatio();
     for (label k = begin; k < end; ++k)
     {
         const scalar* g = grad + 4*k;
-        rho[k - begin] = rho_*(1 - g[0] - g[3]);
+        rho[k - begin] = rho_*(1 - (1 + zzRatio)*(g[0] + g[3]));
     }
 }
 
@@ -81,12 +83,13 @@ void Foam::linearElastic::strainEnergyDensity
     const label begin, const label end, const scalar* grad, scalar* energy
 ) const
 {
+    // With eps_zz eliminated (plane stress) the energy of the in-plane law
     for (label k = begin; k < end; ++k)
     {
         const scalar* g = grad + 4*k;
         const scalar exy = 0.5*(g[1] + g[2]);
         const scalar tr = g[0] + g[3];
         energy[k - begin] =
-            0.5*lambda_*tr*tr + mu_*(g[0]*g[0] + g[3]*g[3] + 2*exy*exy);
+            0.5*planeLambda_*tr*tr + mu_*(g[0]*g[0] + g[3]*g[3] + 2*exy*exy);
     }
 }

@@ -9,11 +9,54 @@ namespace Foam
 }
 
 
+// * * * * * * * * * * * * * * * Local Functions * * * * * * * * * * * * * * //
+
+namespace
+{
+
+using Foam::scalar;
+
+//- Newton iterations of the out-of-plane stretch stop once the correction
+//  is below this: the next one, of order its square (quadratic
+//  convergence, f''/(2 f') <= 1 for lambda >= 0), is below round-off
+constexpr scalar logStretchTolerance = 1e-8;
+
+//- Safeguard on the Newton iterations (3 reach round-off at strains of
+//  order 1, 2 at 1e-3)
+constexpr int maxLogStretchIterations = 20;
+
+} // End anonymous namespace
+
+
+// * * * * * * * * * * * * * Private Member Functions  * * * * * * * * * * * //
+
+Foam::scalar Foam::neoHookean::outOfPlaneLogStretch(const scalar lnJ) const
+{
+    if (!planeStress()) return 0;
+
+    // Small-strain start, eps_zz = -lambda/(lambda + 2 mu) tr eps
+    scalar s = -lambda_*lnJ/(lambda_ + 2*mu_);
+    for (int it = 0; it < maxLogStretchIterations; ++it)
+    {
+        const scalar lz2 = std::exp(2*s);
+        const scalar ds =
+            (mu_*(lz2 - 1) + lambda_*(lnJ + s))/(2*mu_*lz2 + lambda_);
+        s -= ds;
+        if (std::abs(ds) < logStretchTolerance) break;
+    }
+    return s;
+}
+
+
+// * * * * * * * * * * * * * * * * Constructors  * * * * * * * * * * * * * * //
+
 Foam::neoHookean::neoHookean(const word& name, const dictionary& dict)
 :
     elasticSolid(name, dict)
 {}
 
+
+// * * * * * * * * * * * * * * * Member Functions  * * * * * * * * * * * * * //
 
 bool Foam::neoHookean::stress
 (
@@ -34,9 +77,12 @@ bool Foam::neoHookean::stress
             P[0] = P[1] = P[2] = P[3] = 0;
             continue;
         }
-        // F^-T = cofactor(F)/J
+        const scalar lnJ = std::log(J);
+        // ln J_3D = ln J + ln lambda_zz
+        const scalar lnJ3 = lnJ + outOfPlaneLogStretch(lnJ);
+        // F^-T = cofactor(F)/J (the in-plane block of the 3D F^-T)
         const scalar FinvT[4] = {F[3]/J, -F[2]/J, -F[1]/J, F[0]/J};
-        const scalar c = lambda_*std::log(J) - mu_;
+        const scalar c = lambda_*lnJ3 - mu_;
         for (label i = 0; i < 4; ++i) P[i] = mu_*F[i] + c*FinvT[i];
     }
     return ok;
@@ -55,15 +101,36 @@ void Foam::neoHookean::cauchyStress
         scalar F[4];
         const scalar J = deformationGradient(grad + 4*k, F);
         const scalar lnJ = std::log(J);
-        // sigma = (mu (B - I) + lambda ln J I)/J, B = F F^T
+        const scalar lnLz = outOfPlaneLogStretch(lnJ);
+        const scalar lnJ3 = lnJ + lnLz;
+        const scalar J3 = J*std::exp(lnLz);
+        // sigma = (mu (B - I) + lambda ln J_3D I)/J_3D, B = F F^T with
+        // B_zz = lambda_zz^2. sigma_zz vanishes in plane stress up to the
+        // convergence of outOfPlaneLogStretch: computed, not set to 0.
         scalar* s = sigma6 + 6*(k - begin);
-        s[0] = (mu_*(F[0]*F[0] + F[1]*F[1] - 1) + lambda_*lnJ)/J;
-        s[1] = (mu_*(F[2]*F[2] + F[3]*F[3] - 1) + lambda_*lnJ)/J;
-        s[2] = lambda_*lnJ/J;
-        s[3] = mu_*(F[0]*F[2] + F[1]*F[3])/J;
+        s[0] = (mu_*(F[0]*F[0] + F[1]*F[1] - 1) + lambda_*lnJ3)/J3;
+        s[1] = (mu_*(F[2]*F[2] + F[3]*F[3] - 1) + lambda_*lnJ3)/J3;
+        s[2] = (mu_*(std::exp(2*lnLz) - 1) + lambda_*lnJ3)/J3;
+        s[3] = mu_*(F[0]*F[2] + F[1]*F[3])/J3;
         s[4] = 0;
         s[5] = 0;
         pressure[k - begin] = -(s[0] + s[1] + s[2])/3;
+    }
+}
+
+
+void Foam::neoHookean::density
+(
+    const label begin, const label end, const scalar* grad,
+    const scalar* area, const scalar* mass, scalar* rho
+) const
+{
+    // rho0/J_3D
+    for (label k = begin; k < end; ++k)
+    {
+        scalar F[4];
+        const scalar J = deformationGradient(grad + 4*k, F);
+        rho[k - begin] = rho_/(J*std::exp(outOfPlaneLogStretch(std::log(J))));
     }
 }
 
@@ -78,8 +145,11 @@ void Foam::neoHookean::strainEnergyDensity
         scalar F[4];
         const scalar J = deformationGradient(grad + 4*k, F);
         const scalar lnJ = std::log(J);
-        const scalar trC = F[0]*F[0] + F[1]*F[1] + F[2]*F[2] + F[3]*F[3];
+        const scalar lnLz = outOfPlaneLogStretch(lnJ);
+        const scalar lnJ3 = lnJ + lnLz;
+        const scalar trC =
+            F[0]*F[0] + F[1]*F[1] + F[2]*F[2] + F[3]*F[3] + std::exp(2*lnLz);
         energy[k - begin] =
-            0.5*mu_*(trC - 2) - mu_*lnJ + 0.5*lambda_*lnJ*lnJ;
+            0.5*mu_*(trC - 3) - mu_*lnJ3 + 0.5*lambda_*lnJ3*lnJ3;
     }
 }

@@ -47,14 +47,18 @@ bool Foam::saintVenantKirchhoff::stress
     const scalar* area, const scalar* mass, scalar* stress
 ) const
 {
+    // Plane stress: S is linear in E, so S_zz = 0 leaves the in-plane law
+    // with planeLambda exactly; the domain is collapsed if the
+    // out-of-plane C_zz = 1 + 2 E_zz it implies is not positive
+    const scalar zzRatio = outOfPlaneStrainRatio();
     bool ok = true;
     #pragma omp parallel for schedule(static) reduction(&&: ok) if(end - begin > minParallelLoop)
     for (label k = begin; k < end; ++k)
     {
         scalar F[4], S[3], E[3];
         const scalar J = deformationGradient(grad + 4*k, F);
-        ok = ok && J > 0;
-        svk(F, lambda_, mu_, S, E);
+        svk(F, planeLambda_, mu_, S, E);
+        ok = ok && J > 0 && 1 + 2*zzRatio*(E[0] + E[2]) > 0;
         scalar* P = stress + 4*k;
         P[0] = F[0]*S[0] + F[1]*S[1];
         P[1] = F[0]*S[1] + F[1]*S[2];
@@ -62,6 +66,19 @@ bool Foam::saintVenantKirchhoff::stress
         P[3] = F[2]*S[1] + F[3]*S[2];
     }
     return ok;
+}
+
+
+Foam::scalar Foam::saintVenantKirchhoff::volumeRatio
+(
+    const scalar J,
+    const scalar E[3]
+) const
+{
+    // J_3D = J lambda_zz, lambda_zz^2 = C_zz = 1 + 2 E_zz
+    return planeStress()
+      ? J*std::sqrt(1 + 2*outOfPlaneStrainRatio()*(E[0] + E[2]))
+      : J;
 }
 
 
@@ -76,21 +93,39 @@ void Foam::saintVenantKirchhoff::cauchyStress
     {
         scalar F[4], S[3], E[3];
         const scalar J = deformationGradient(grad + 4*k, F);
-        svk(F, lambda_, mu_, S, E);
-        // sigma = F S F^T / J
+        svk(F, planeLambda_, mu_, S, E);
+        const scalar J3 = volumeRatio(J, E);
+        // sigma = F S F^T / J_3D
         const scalar FS[4] =
         {
             F[0]*S[0] + F[1]*S[1], F[0]*S[1] + F[1]*S[2],
             F[2]*S[0] + F[3]*S[1], F[2]*S[1] + F[3]*S[2]
         };
         scalar* s = sigma6 + 6*(k - begin);
-        s[0] = (FS[0]*F[0] + FS[1]*F[1])/J;
-        s[1] = (FS[2]*F[2] + FS[3]*F[3])/J;
-        s[2] = lambda_*(E[0] + E[2])/J;
-        s[3] = (FS[0]*F[2] + FS[1]*F[3])/J;
+        s[0] = (FS[0]*F[0] + FS[1]*F[1])/J3;
+        s[1] = (FS[2]*F[2] + FS[3]*F[3])/J3;
+        // S_zz = lambda tr E in plane strain (F_zz = 1), 0 in plane stress
+        s[2] = planeStress() ? 0 : lambda_*(E[0] + E[2])/J;
+        s[3] = (FS[0]*F[2] + FS[1]*F[3])/J3;
         s[4] = 0;
         s[5] = 0;
         pressure[k - begin] = -(s[0] + s[1] + s[2])/3;
+    }
+}
+
+
+void Foam::saintVenantKirchhoff::density
+(
+    const label begin, const label end, const scalar* grad,
+    const scalar* area, const scalar* mass, scalar* rho
+) const
+{
+    for (label k = begin; k < end; ++k)
+    {
+        scalar F[4], S[3], E[3];
+        const scalar J = deformationGradient(grad + 4*k, F);
+        svk(F, planeLambda_, mu_, S, E);
+        rho[k - begin] = rho_/volumeRatio(J, E);
     }
 }
 
@@ -104,9 +139,10 @@ void Foam::saintVenantKirchhoff::strainEnergyDensity
     {
         scalar F[4], S[3], E[3];
         deformationGradient(grad + 4*k, F);
-        svk(F, lambda_, mu_, S, E);
+        svk(F, planeLambda_, mu_, S, E);
+        // With E_zz eliminated (plane stress) the in-plane law's energy
         const scalar trE = E[0] + E[2];
-        energy[k - begin] = 0.5*lambda_*trE*trE
+        energy[k - begin] = 0.5*planeLambda_*trE*trE
           + mu_*(E[0]*E[0] + 2*E[1]*E[1] + E[2]*E[2]);
     }
 }
