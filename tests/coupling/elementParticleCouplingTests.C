@@ -3,8 +3,9 @@ Description
     Unit tests of the element-particle coupling (paper eqs. 23-26), with
     the halves and the coupling wired in memory in the method's order of
     one step (spemMethod::advance/evaluate):
-      - ghosts are found by the pair reach kappa (h_e + h_j)/2: next to
-        coarser elements a particle sees every element its sums take;
+      - with ghostSearch pairReach, ghosts are found by the pair reach
+        kappa (h_e + h_j)/2: next to coarser elements a particle sees
+        every element its sums take;
       - a free blob of water in zero gravity, half elements and half
         particles, with a rotating and shearing velocity field: the
         exchanges that are exact keep the total linear momentum to
@@ -171,7 +172,8 @@ TEST(ElementParticleCoupling, ghostsAreFoundByThePairReachOnAGradedInterface)
     );
     halves H
     (
-        std::move(mesh), "", {}, [](scalar, scalar y) { return y > 0.5; }
+        std::move(mesh), "ghostSearch pairReach;", {},
+        [](scalar, scalar y) { return y > 0.5; }
     );
     ASSERT_TRUE(H.evaluate());
 

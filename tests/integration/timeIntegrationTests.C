@@ -166,7 +166,7 @@ TEST(CentralDifferences, dampingIsTheSameInBothHalves)
 {
     // No gravity, a uniform velocity, mass-proportional damping alpha: the
     // flow stays uniform and both halves must give the discrete solution
-    //     v^{n+1/2} = v^{n-1/2} (1 - alpha s/2)/(1 + alpha s/2),
+    //     v^{n+1/2} = v^{n-1/2}/(1 + alpha s),
     // s the span of the update (half the first step, then the mean of two)
     const scalar alpha = 5, u0 = 0.3;
     auto em = waterBlock();
@@ -185,7 +185,7 @@ TEST(CentralDifferences, dampingIsTheSameInBothHalves)
     {
         const scalar h = varyingStep(dt, step);
         const scalar s = 0.5*(previous + h);
-        exact *= (1 - 0.5*alpha*s)/(1 + 0.5*alpha*s);
+        exact *= 1/(1 + alpha*s);
         previous = h;
         t += h;
         ASSERT_TRUE(em->advance(h) && em->evaluate()) << em->failure();
@@ -212,8 +212,9 @@ TEST(CentralDifferences, dampingIsTheSameInBothHalves)
     // Round-off of a hundred products and of the particles' zero pressure
     // forces
     EXPECT_LT(worst, 1e-12*u0);
-    // The discrete solution is that of the damped equation (second order)
-    EXPECT_NEAR(exact, u0*std::exp(-alpha*(t - 0.5*previous)), 1e-3*u0);
+    // The discrete solution is that of the damped equation (first order
+    // in alpha dt, here 0.004 per step: 1 % over the run)
+    EXPECT_NEAR(exact, u0*std::exp(-alpha*(t - 0.5*previous)), 1e-2*u0);
 }
 
 

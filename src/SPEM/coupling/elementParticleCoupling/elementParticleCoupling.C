@@ -27,6 +27,7 @@ Foam::elementParticleCoupling::elementParticleCoupling
 )
 :
     interfaceForce_(interfaceForceType::traction),
+    pairReach_(false),
     imbalance_{0, 0},
     velocityCorrection_(0.1),
     smoothingLengthRatio_(smoothingLengthRatio)
@@ -34,7 +35,19 @@ Foam::elementParticleCoupling::elementParticleCoupling
     const dictionary* d = schemesDict.findDict("coupling");
     if (d)
     {
-        checkKeywords(*d, {"interfaceVelocityCorrection", "interfaceForce"});
+        checkKeywords
+        (
+            *d, {"interfaceVelocityCorrection", "interfaceForce", "ghostSearch"}
+        );
+        const word search =
+            d->getOrDefault<word>("ghostSearch", "particleSupport");
+        if (search != "particleSupport" && search != "pairReach")
+        {
+            FatalIOErrorInFunction(*d)
+                << "coupling/ghostSearch must be particleSupport or"
+                << " pairReach, found " << search << exit(FatalIOError);
+        }
+        pairReach_ = search == "pairReach";
         velocityCorrection_ =
             d->getOrDefault<scalar>
             (
@@ -227,18 +240,27 @@ void Foam::elementParticleCoupling::setGhosts
             const label* n = &nodes[3*el];
             const scalar cx = (x[2*n[0]] + x[2*n[1]] + x[2*n[2]])/3;
             const scalar cy = (x[2*n[0] + 1] + x[2*n[1] + 1] + x[2*n[2] + 1])/3;
-            // Within the pair reach kappa h_ij of a fluid particle
+            // Within the pair reach kappa h_ij of a fluid particle, or
+            // within its support kappa h_j
             const scalar hGhost = smoothingLengthRatio_*std::sqrt(area[el]);
             bool reached = false;
-            cells_.forEachParticleInReach
-            (
-                ps, cx, cy, hGhost, kappa,
+            const auto fluidInReach =
                 [&](const label j, const scalar, const scalar, const scalar)
                 {
                     reached =
                         reached || ps.kinds()[j] == particleSet::kind::fluid;
-                }
-            );
+                };
+            if (pairReach_)
+            {
+                cells_.forEachParticleInReach
+                (
+                    ps, cx, cy, hGhost, kappa, fluidInReach
+                );
+            }
+            else
+            {
+                cells_.forEachParticleNear(ps, cx, cy, kappa, fluidInReach);
+            }
             if (!reached) continue;
 
             // Eq. (17) with equal nodal shares, eq. (18)

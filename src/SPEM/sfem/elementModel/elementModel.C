@@ -597,10 +597,9 @@ bool Foam::elementModel::advance(const scalar dt)
     const scalar gx = gravity_[0], gy = gravity_[1];
     // The velocity spans dt^n = (dt^{n-1/2} + dt^{n+1/2})/2, from the
     // half step before to the half step after the forces' time.
-    // Semi-implicit mass-proportional damping: stable for any alpha dt
+    // Implicit mass-proportional damping: stable for any alpha dt
     const scalar span = 0.5*(previousDeltaT_[cur_] + dt);
-    const scalar damp = 0.5*massDamping_*span;
-    const scalar keep = (1 - damp)/(1 + damp), gain = span/(1 + damp);
+    const scalar keep = 1/(1 + massDamping_*span), gain = span*keep;
     bool finite = true;
 
     scalar* reaction = nodeReaction_.data();

@@ -898,10 +898,9 @@ bool Foam::sphFluid::advance(const scalar dt)
     const scalar threshold = controls_.freeSurfaceThreshold;
     // The velocity spans dt^n = (dt^{n-1/2} + dt^{n+1/2})/2, from the
     // half step before to the half step after the accelerations' time;
-    // semi-implicit mass-proportional damping, as the element half
+    // implicit mass-proportional damping, as the element half
     const scalar span = 0.5*(previousDeltaT_ + dt);
-    const scalar damp = 0.5*massDamping_*span;
-    const scalar keep = (1 - damp)/(1 + damp), gain = span/(1 + damp);
+    const scalar keep = 1/(1 + massDamping_*span), gain = span*keep;
 
     #pragma omp parallel for schedule(static) if(n > minParallelLoop)
     for (label i = 0; i < n; ++i)
