@@ -18,6 +18,14 @@ Foam::elementParticleCoupling::interfaceForceTypeNames
 });
 
 
+const Foam::Enum<Foam::elementParticleCoupling::ghostSearchType>
+Foam::elementParticleCoupling::ghostSearchTypeNames
+({
+    {ghostSearchType::particleSupport, "particleSupport"},
+    {ghostSearchType::pairReach, "pairReach"},
+});
+
+
 // * * * * * * * * * * * * * * * * Constructors  * * * * * * * * * * * * * * //
 
 Foam::elementParticleCoupling::elementParticleCoupling
@@ -27,7 +35,7 @@ Foam::elementParticleCoupling::elementParticleCoupling
 )
 :
     interfaceForce_(interfaceForceType::traction),
-    pairReach_(false),
+    ghostSearch_(ghostSearchType::particleSupport),
     imbalance_{0, 0},
     velocityCorrection_(0.1),
     smoothingLengthRatio_(smoothingLengthRatio)
@@ -39,15 +47,8 @@ Foam::elementParticleCoupling::elementParticleCoupling
         (
             *d, {"interfaceVelocityCorrection", "interfaceForce", "ghostSearch"}
         );
-        const word search =
-            d->getOrDefault<word>("ghostSearch", "particleSupport");
-        if (search != "particleSupport" && search != "pairReach")
-        {
-            FatalIOErrorInFunction(*d)
-                << "coupling/ghostSearch must be particleSupport or"
-                << " pairReach, found " << search << exit(FatalIOError);
-        }
-        pairReach_ = search == "pairReach";
+        ghostSearch_ =
+            ghostSearchTypeNames.getOrDefault("ghostSearch", *d, ghostSearch_);
         velocityCorrection_ =
             d->getOrDefault<scalar>
             (
@@ -250,7 +251,7 @@ void Foam::elementParticleCoupling::setGhosts
                     reached =
                         reached || ps.kinds()[j] == particleSet::kind::fluid;
                 };
-            if (pairReach_)
+            if (ghostSearch_ == ghostSearchType::pairReach)
             {
                 cells_.forEachParticleInReach
                 (
@@ -286,7 +287,8 @@ void Foam::elementParticleCoupling::setGhosts
 void Foam::elementParticleCoupling::interfaceTraction
 (
     elementModel& elements,
-    const sphFluid& particles
+    const sphFluid& particles,
+    scalar added[2]
 )
 {
     std::vector<scalar>& f = elements.externalForce();
@@ -348,6 +350,8 @@ void Foam::elementParticleCoupling::interfaceTraction
         f[2*P + 1] += 0.5*Fy;
         f[2*Q] += 0.5*Fx;
         f[2*Q + 1] += 0.5*Fy;
+        added[0] += Fx;
+        added[1] += Fy;
     }
 }
 
@@ -355,7 +359,8 @@ void Foam::elementParticleCoupling::interfaceTraction
 void Foam::elementParticleCoupling::ghostReaction
 (
     elementModel& elements,
-    const sphFluid& particles
+    const sphFluid& particles,
+    scalar added[2]
 ) const
 {
     std::vector<scalar>& f = elements.externalForce();
@@ -368,6 +373,8 @@ void Foam::elementParticleCoupling::ghostReaction
         {
             f[2*n[a]] += F[2*g]/3;
             f[2*n[a] + 1] += F[2*g + 1]/3;
+            added[0] += F[2*g]/3;
+            added[1] += F[2*g + 1]/3;
         }
     }
 }
@@ -376,7 +383,8 @@ void Foam::elementParticleCoupling::ghostReaction
 void Foam::elementParticleCoupling::interfaceReaction
 (
     elementModel& elements,
-    const sphFluid& particles
+    const sphFluid& particles,
+    scalar added[2]
 )
 {
     std::vector<scalar>& f = elements.externalForce();
@@ -433,6 +441,8 @@ void Foam::elementParticleCoupling::interfaceReaction
                             const label n = interfaceNodes_[q];
                             f[2*n] += w*Fx;
                             f[2*n + 1] += w*Fy;
+                            added[0] += w*Fx;
+                            added[1] += w*Fy;
                         }
                     );
                     continue;
@@ -452,6 +462,8 @@ void Foam::elementParticleCoupling::interfaceReaction
                 }
                 f[2*nearest] += Fx;
                 f[2*nearest + 1] += Fy;
+                added[0] += Fx;
+                added[1] += Fy;
             }
         }
     );
@@ -484,37 +496,22 @@ void Foam::elementParticleCoupling::beforeParticleEvaluate(couplingStep& s)
 
 void Foam::elementParticleCoupling::afterParticleEvaluate(couplingStep& s)
 {
-    // The method zeroed the external forces: the sum before is that of
-    // the couplings before this one (none on fluid elements)
-    const std::vector<scalar>& f = s.elements->externalForce();
-    scalar before[2] = {0, 0};
-    for (size_t i = 0; i < f.size(); i += 2)
-    {
-        before[0] += f[i];
-        before[1] += f[i + 1];
-    }
+    scalar added[2] = {0, 0};
     switch (interfaceForce_)
     {
         case interfaceForceType::interfaceReaction:
-            interfaceReaction(*s.elements, *s.particles);
+            interfaceReaction(*s.elements, *s.particles, added);
             break;
         case interfaceForceType::ghostReaction:
-            ghostReaction(*s.elements, *s.particles);
+            ghostReaction(*s.elements, *s.particles, added);
             break;
         case interfaceForceType::traction:
-            interfaceTraction(*s.elements, *s.particles);
+            interfaceTraction(*s.elements, *s.particles, added);
             break;
-    }
-    scalar after[2] = {0, 0};
-    for (size_t i = 0; i < f.size(); i += 2)
-    {
-        after[0] += f[i];
-        after[1] += f[i + 1];
     }
     for (int k = 0; k < 2; ++k)
     {
-        imbalance_[k] =
-            after[k] - before[k] - s.particles->ghostForce()[k];
+        imbalance_[k] = added[k] - s.particles->ghostForce()[k];
     }
 }
 
