@@ -155,6 +155,34 @@ void Foam::neoHookean::density
 }
 
 
+Foam::scalar Foam::neoHookean::longitudinalModulus(const scalar F[4]) const
+{
+    const scalar J = F[0]*F[3] - F[1]*F[2];
+    const scalar lnJ = std::log(J);
+    // Largest squared stretch: the larger eigenvalue of B = F F^T
+    const scalar trB = F[0]*F[0] + F[1]*F[1] + F[2]*F[2] + F[3]*F[3];
+    const scalar lMax2 =
+        0.5*(trB + std::sqrt(std::max(trB*trB - 4*J*J, scalar(0))));
+    // Longitudinal modulus along it (see header), at least the transverse
+    // mu lMax2
+    scalar longitudinal;
+    if (planeStress())
+    {
+        // lambda_zz^2 from the small-strain ln lambda_zz, the first Newton
+        // step from lambda_zz = 1: f being convex it is at or above the
+        // root, and the modulus grows with lambda_zz: a bound from above
+        const scalar lz2 = std::exp(-2*lambda_*lnJ/(lambda_ + 2*mu_));
+        longitudinal = mu_*lMax2
+          + mu_*lz2*(3*lambda_ + 2*mu_*lz2)/(lambda_ + 2*mu_*lz2);
+    }
+    else
+    {
+        longitudinal = lambda_*(1 - lnJ) + mu_*(1 + lMax2);
+    }
+    return std::max(longitudinal, mu_*lMax2);
+}
+
+
 void Foam::neoHookean::strainEnergyDensity
 (
     const label begin, const label end, const scalar* grad, scalar* energy
