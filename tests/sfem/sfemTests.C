@@ -1,8 +1,10 @@
 /*---------------------------------------------------------------------------*\
 Description
     Unit tests of the element half (ES-FEM, paper sect. 2.1): the patch
-    test on an irregular mesh, lumped masses, and the stress of each
-    constitutive model for a known deformation.
+    test on an irregular mesh, lumped masses, the stable time step of a
+    deformed solid, and the stress of each constitutive model for a known
+    deformation, in plane strain and plane stress, with its tangent wave
+    speed.
 
 \*---------------------------------------------------------------------------*/
 
