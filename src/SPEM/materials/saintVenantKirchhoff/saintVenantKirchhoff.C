@@ -130,6 +130,30 @@ void Foam::saintVenantKirchhoff::density
 }
 
 
+Foam::scalar Foam::saintVenantKirchhoff::longitudinalModulus
+(
+    const scalar F[4]
+) const
+{
+    // Principal stretches squared, the eigenvalues of C = F^T F
+    const scalar Cxx = F[0]*F[0] + F[2]*F[2];
+    const scalar Cyy = F[1]*F[1] + F[3]*F[3];
+    const scalar Cxy = F[0]*F[1] + F[2]*F[3];
+    const scalar mean = 0.5*(Cxx + Cyy);
+    const scalar radius = std::sqrt(0.25*(Cxx - Cyy)*(Cxx - Cyy) + Cxy*Cxy);
+    const scalar trE = mean - 1;
+    // Longitudinal modulus along each principal direction (see header):
+    // (lambda + 2 mu) l^4 + S_i l^2, S_i = lambda tr E + mu (l^2 - 1)
+    scalar modulus = 0;
+    for (const scalar l2 : {mean + radius, mean - radius})
+    {
+        const scalar S = planeLambda_*trE + mu_*(l2 - 1);
+        modulus = std::max(modulus, (planeLambda_ + 2*mu_)*l2*l2 + S*l2);
+    }
+    return modulus;
+}
+
+
 void Foam::saintVenantKirchhoff::strainEnergyDensity
 (
     const label begin, const label end, const scalar* grad, scalar* energy

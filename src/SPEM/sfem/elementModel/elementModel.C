@@ -31,18 +31,26 @@ inline scalar triangleAreaGradN
     return 0.5*((x1[0] - x0[0])*(x2[1] - x0[1]) - (x2[0] - x0[0])*(x1[1] - x0[1]));
 }
 
-//- Smallest altitude of a triangle, the length of its stability limit
-inline scalar minAltitude
+//- Square of the longest edge of a triangle
+inline scalar longestEdgeSqr
 (
-    const scalar* x0, const scalar* x1, const scalar* x2, const scalar area
+    const scalar* x0, const scalar* x1, const scalar* x2
 )
 {
     auto len2 = [](const scalar* a, const scalar* b)
     {
         return (a[0] - b[0])*(a[0] - b[0]) + (a[1] - b[1])*(a[1] - b[1]);
     };
-    const scalar l2 = std::max({len2(x0, x1), len2(x1, x2), len2(x2, x0)});
-    return 2*area/std::sqrt(l2);
+    return std::max({len2(x0, x1), len2(x1, x2), len2(x2, x0)});
+}
+
+//- Smallest altitude of a triangle, the length of its stability limit
+inline scalar minAltitude
+(
+    const scalar* x0, const scalar* x1, const scalar* x2, const scalar area
+)
+{
+    return 2*area/std::sqrt(longestEdgeSqr(x0, x1, x2));
 }
 
 //- A_e grad w = sum_a w_a (x) A grad N_a, row-major g[2i + j] = dw_i/dx_j
@@ -273,7 +281,9 @@ void Foam::elementModel::buildReferenceGeometry()
             elemArea_[el] = A;
             elemMass_[el] = rho*A;
             for (label a = 0; a < 3; ++a) nodeMass_[n[a]] += rho*A/3;
-            if (!mat.isFluid())
+            // A geometrically linear solid's stiffness never changes: its
+            // step is the reference one (the others' come from the state)
+            if (!mat.isFluid() && mat.isGeometricallyLinear())
             {
                 const scalar h = minAltitude(&X_[2*n[0]], &X_[2*n[1]], &X_[2*n[2]], A);
                 solidTimeScale_ = std::min(solidTimeScale_, h/mat.waveSpeed());
@@ -351,7 +361,18 @@ bool Foam::elementModel::elementPass()
         {
             // Performance critical: every solid element, every step
             const scalar* X = X_.data();
-            #pragma omp parallel for schedule(static) if(end - begin > minParallelLoop)
+            // The stable step of a solid whose stiffness changes with the
+            // state (hyperelastic: it stiffens in compression while its
+            // elements shrink) is the current smallest altitude h over the
+            // current tangent wave speed c; linearElastic's force is
+            // linear on the reference configuration, its stiffness and so
+            // its step constant: solidTimeScale_ of build(). The loop
+            // takes the least (h/c)^2 = 4 A^2 rho0/(l_max^2 M), the square
+            // root once per region: divisions and square roots bound it.
+            const bool fromState = !mat.isGeometricallyLinear();
+            scalar minRatio = std::numeric_limits<scalar>::max();
+            bool regionOk = true;
+            #pragma omp parallel for schedule(static) reduction(min: minRatio) reduction(&&: regionOk) if(end - begin > minParallelLoop)
             for (label el = begin; el < end; ++el)
             {
                 const label* n = &elemNodes_[3*el];
@@ -364,8 +385,47 @@ bool Foam::elementModel::elementPass()
                 // Reference A grad N: recomputing it is cheaper than
                 // streaming it from memory
                 scalar AgradN[6];
-                triangleAreaGradN(X + 2*n[0], X + 2*n[1], X + 2*n[2], AgradN);
-                areaGradient(AgradN, u[0], u[1], u[2], &elemAreaGrad_[4*el]);
+                const scalar A0 = triangleAreaGradN
+                (
+                    X + 2*n[0], X + 2*n[1], X + 2*n[2], AgradN
+                );
+                scalar* Ag = &elemAreaGrad_[4*el];
+                areaGradient(AgradN, u[0], u[1], u[2], Ag);
+                if (!fromState) continue;
+
+                // The element's F = I + grad u; its current area is J A0
+                const scalar invA0 = 1/A0;
+                const scalar F[4] =
+                {
+                    1 + Ag[0]*invA0, Ag[1]*invA0, Ag[2]*invA0, 1 + Ag[3]*invA0
+                };
+                const scalar J = F[0]*F[3] - F[1]*F[2];
+                if (!(J > 0))
+                {
+                    regionOk = false;
+                    continue;
+                }
+                const scalar A = J*A0;
+                minRatio = std::min
+                (
+                    minRatio,
+                    A*A
+                   /(
+                        longestEdgeSqr(x + 2*n[0], x + 2*n[1], x + 2*n[2])
+                       *mat.longitudinalModulus(F)
+                    )
+                );
+            }
+            if (fromState)
+            {
+                timeScale =
+                    std::min(timeScale, std::sqrt(4*mat.rho()*minRatio));
+            }
+            if (!regionOk)
+            {
+                failure_ = "an element of solid region " + regions_[r].name
+                  + " is inverted (det F <= 0)";
+                ok = false;
             }
         }
     }
