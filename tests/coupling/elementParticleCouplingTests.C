@@ -241,7 +241,11 @@ TEST(ElementParticleCoupling, ghostsAreFoundByThePairReachOnAGradedInterface)
 
 TEST(ElementParticleCoupling, exactExchangesKeepTheMomentumOfAFreeBlob)
 {
-    for (const std::string force : {"interfaceReaction", "ghostReaction", "traction"})
+    for
+    (
+        const std::string force
+      : {"balancedTraction", "interfaceReaction", "ghostReaction", "traction"}
+    )
     {
         triMesh mesh = testMeshes::build({{0, 1, 0, 1, 12, 12, "water"}});
         const std::vector<scalar> v0 = blobVelocity(mesh);
