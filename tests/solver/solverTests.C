@@ -2690,8 +2690,10 @@ class SolverTank : public Solver
 protected:
 
     //- method SPH, the sides open: the column runs out sideways and falls
-    //  past the floor's level, outside the tank (the open sides' strips
-    //  end at the floor; the particles' kernel support is 2 h = 0.153 m)
+    //  past the floor's level, outside the tank (the opening runs from
+    //  one end of the walled floor round to the other: the tank goes on
+    //  above the floor's line only; the particles' kernel support is
+    //  2 h = 0.153 m)
     leavingRun runLeaving(const std::string& leaving)
     {
         useSPH();

@@ -4,10 +4,12 @@ Description
     src/SPEM/coupling/wallContact).
 
       - TankBoundary.*   a 1 x 0.5 m tank with an open top: which points are
-                         outside it by more than the query distance (the
-                         open top goes on upward, the side walls do not),
-                         the nearest wall point and its normal, the sign at
-                         a corner.
+                         outside it by more than the query distance (above
+                         the rim is inside, beside the tank too; below the
+                         rim beside the side walls is outside), the nearest
+                         wall point and its normal, the sign at a corner;
+                         open sides above a walled floor, an open top and
+                         bottom, a boundary open all round.
       - WallContact.*    a neoHookean cantilever 0.04 m thick clamped to the
                          left wall 0.1 m above the floor, loaded by its own
                          weight with g = 100 m/s^2: unsupported its tip
@@ -94,13 +96,122 @@ TEST(TankBoundary, pointsFartherThanReachOutsideTheWallsAreOutside)
     EXPECT_TRUE(tank.outside(0.5, -0.051));
     EXPECT_TRUE(tank.outside(1.2, 0.25));
     EXPECT_TRUE(tank.outside(0.5, -3));
-    // Above the open top the tank goes on, beside it not
+    // Above the open top the tank goes on
     EXPECT_FALSE(tank.outside(0.5, 0.6));
     EXPECT_FALSE(tank.outside(0.02, 40));
     EXPECT_FALSE(tank.outside(1.04, 3));
-    EXPECT_TRUE(tank.outside(1.06, 3));
-    EXPECT_TRUE(tank.outside(-0.3, 0.6));
     // Not a number is nowhere
+    EXPECT_TRUE(tank.outside(std::nan(""), 0.2));
+}
+
+
+TEST(TankBoundary, aboveTheRimBesideTheTankIsInsideBelowItOutside)
+{
+    // The damBreak splash that stopped the tutorial at t = 0.698 s: 1 m
+    // above the rim and 1.36 cm beside the left wall, here 0.3 m beside
+    const triMesh mesh = openTank();
+    const tankBoundary tank(mesh, openTankTypes(mesh), 0.05);
+    EXPECT_EQ(tank.nOpenings(), 1);
+    EXPECT_EQ(tank.nOpenLoops(), 0);
+    EXPECT_FALSE(tank.outside(-0.0136, 1.5));
+    EXPECT_FALSE(tank.outside(-0.3, 0.6));
+    EXPECT_FALSE(tank.outside(1.3, 0.6));
+    EXPECT_FALSE(tank.outside(-1e6, 1e6));
+    // Within reach below the rim's line, beside the tank: still inside
+    EXPECT_FALSE(tank.outside(-0.3, 0.451));
+    // Fallen below the rim beside the tank (more than reach below it, more
+    // than reach from the wall): outside
+    EXPECT_TRUE(tank.outside(-0.3, 0.449));
+    EXPECT_TRUE(tank.outside(1.3, 0.4));
+    EXPECT_TRUE(tank.outside(-0.0136 - 0.06, 0.3));
+}
+
+
+TEST(TankBoundary, openSidesAboveAWalledFloorOpenOntoEverythingAboveIt)
+{
+    // Sides and top open, the floor a wall: one opening from the floor's
+    // right end round to its left end; the open side of the line through
+    // them is everything above the floor (the edges' own half-planes
+    // would have covered the ground beside the tank too)
+    const triMesh mesh = testMeshes::build
+    (
+        {{0, 1, 0, 0.5, 10, 5, "water"}},
+        testMeshes::split::alternating,
+        [](double, double, double, double ny) -> std::string
+        {
+            return ny < -0.5 ? "floor" : "open";
+        }
+    );
+    const tankBoundary tank
+    (
+        mesh,
+        testModels::patchTypes
+        (
+            mesh,
+            {{"floor", patchType::slipWall}, {"open", patchType::freeSurface}}
+        ),
+        0.05
+    );
+    EXPECT_EQ(tank.nOpenings(), 1);
+    EXPECT_FALSE(tank.outside(-3, 0.2));
+    EXPECT_FALSE(tank.outside(4, 0.01));
+    EXPECT_FALSE(tank.outside(4, 7));
+    EXPECT_TRUE(tank.outside(-3, -0.06));
+    EXPECT_TRUE(tank.outside(1.5, -0.2));
+    EXPECT_TRUE(tank.outside(0.5, -0.2));
+}
+
+
+TEST(TankBoundary, openTopAndOpenBottomAreTwoOpeningsTheSidesStayWalls)
+{
+    // The openings of hydrostaticElasticPlate: the water's top and the
+    // plate's traction-free bottom; the side walls between
+    const triMesh mesh = testMeshes::build
+    (
+        {{0, 1, -0.1, 0.5, 10, 6, "water"}},
+        testMeshes::split::alternating,
+        [](double, double, double, double ny) -> std::string
+        {
+            return std::abs(ny) > 0.5 ? "open" : "walls";
+        }
+    );
+    const tankBoundary tank
+    (
+        mesh,
+        testModels::patchTypes
+        (
+            mesh,
+            {{"walls", patchType::slipWall}, {"open", patchType::freeSurface}}
+        ),
+        0.05
+    );
+    EXPECT_EQ(tank.nOpenings(), 2);
+    EXPECT_FALSE(tank.outside(0.5, 3));
+    EXPECT_FALSE(tank.outside(-2, 0.6));
+    EXPECT_FALSE(tank.outside(0.5, -3));
+    EXPECT_TRUE(tank.outside(-2, 0.2));
+    EXPECT_TRUE(tank.outside(1.2, 0.2));
+}
+
+
+TEST(TankBoundary, boundaryOpenAllRoundHasNothingOutside)
+{
+    const triMesh mesh = openTank();
+    const tankBoundary tank
+    (
+        mesh,
+        testModels::patchTypes
+        (
+            mesh,
+            {{"walls", patchType::freeSurface}, {"top", patchType::freeSurface}}
+        ),
+        0.05
+    );
+    EXPECT_EQ(tank.nOpenings(), 0);
+    EXPECT_EQ(tank.nOpenLoops(), 1);
+    EXPECT_FALSE(tank.outside(-3, -4));
+    EXPECT_FALSE(tank.outside(0.5, 0.25));
+    EXPECT_FALSE(tank.outside(1e6, 0.25));
     EXPECT_TRUE(tank.outside(std::nan(""), 0.2));
 }
 

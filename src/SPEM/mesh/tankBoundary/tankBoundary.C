@@ -50,25 +50,145 @@ inline Foam::scalar Foam::tankBoundary::closestOnEdge
 }
 
 
-bool Foam::tankBoundary::inOpenStrip(const scalar x, const scalar y) const
+bool Foam::tankBoundary::beyondOpening(const scalar x, const scalar y) const
 {
-    for (const label e : openEdges_)
+    for (std::size_t k = 0; k < openingLines_.size(); k += 4)
     {
-        const scalar* a = &points_[2*edgeNodes_[2*e]];
-        const scalar* n = &edgeNormal_[2*e];
-        // Along the edge (tangent (-ny, nx) points from a to b) and beyond
-        const scalar along = -(x - a[0])*n[1] + (y - a[1])*n[0];
-        const scalar beyond = (x - a[0])*n[0] + (y - a[1])*n[1];
-        if
+        const scalar* l = &openingLines_[k];
+        if ((x - l[0])*l[2] + (y - l[1])*l[3] > -reach_) return true;
+    }
+    for (label loop = 0; loop < nOpenLoops(); ++loop)
+    {
+        // Even-odd rule on the loop's polygon
+        bool in = false;
+        for
         (
-            beyond >= 0 && along >= -reach_
-         && along <= edgeLength_[e] + reach_
+            label j = openLoopStart_[loop];
+            j < openLoopStart_[loop + 1];
+            ++j
         )
         {
-            return true;
+            const label e = openLoopEdges_[j];
+            const scalar* a = &points_[2*edgeNodes_[2*e]];
+            const scalar* b = &points_[2*edgeNodes_[2*e + 1]];
+            if
+            (
+                (a[1] > y) != (b[1] > y)
+             && x < a[0] + (y - a[1])*(b[0] - a[0])/(b[1] - a[1])
+            )
+            {
+                in = !in;
+            }
         }
+        if (in != bool(openLoopIsOuter_[loop])) return true;
     }
     return false;
+}
+
+
+void Foam::tankBoundary::findOpenings()
+{
+    // The boundary edges leaving and entering each node (two or more at a
+    // node where two parts of the mesh touch), compressed rows
+    const label nNodes = label(points_.size()/2);
+    std::vector<label> outStart(nNodes + 1, 0), inStart(nNodes + 1, 0);
+    for (label e = 0; e < nEdges(); ++e)
+    {
+        ++outStart[edgeNodes_[2*e] + 1];
+        ++inStart[edgeNodes_[2*e + 1] + 1];
+    }
+    for (label n = 0; n < nNodes; ++n)
+    {
+        outStart[n + 1] += outStart[n];
+        inStart[n + 1] += inStart[n];
+    }
+    std::vector<label> outEdges(nEdges()), inEdges(nEdges());
+    {
+        std::vector<label> o(outStart.begin(), outStart.end() - 1);
+        std::vector<label> i(inStart.begin(), inStart.end() - 1);
+        for (label e = 0; e < nEdges(); ++e)
+        {
+            outEdges[o[edgeNodes_[2*e]]++] = e;
+            inEdges[i[edgeNodes_[2*e + 1]]++] = e;
+        }
+    }
+
+    std::vector<char> visited(nEdges(), 0);
+    // The next unvisited open edge leaving node n, -1 if none
+    auto nextOpen = [&](const label n)
+    {
+        for (label j = outStart[n]; j < outStart[n + 1]; ++j)
+        {
+            const label e = outEdges[j];
+            if (!edgeIsWall_[e] && !visited[e]) return e;
+        }
+        return label(-1);
+    };
+    // The chain of open edges from edge e on, marked visited
+    std::vector<label> chain;
+    auto follow = [&](label e)
+    {
+        chain.clear();
+        while (e >= 0)
+        {
+            visited[e] = 1;
+            chain.push_back(e);
+            e = nextOpen(edgeNodes_[2*e + 1]);
+        }
+    };
+    auto addLoop = [&]()
+    {
+        // Shoelace area: positive for the outer boundary (the tank on the
+        // left of a counter-clockwise loop), negative for a hole
+        scalar area = 0;
+        for (const label e : chain)
+        {
+            const scalar* a = &points_[2*edgeNodes_[2*e]];
+            const scalar* b = &points_[2*edgeNodes_[2*e + 1]];
+            area += a[0]*b[1] - b[0]*a[1];
+        }
+        if (openLoopStart_.empty()) openLoopStart_.push_back(0);
+        openLoopEdges_.insert(openLoopEdges_.end(), chain.begin(), chain.end());
+        openLoopStart_.push_back(label(openLoopEdges_.size()));
+        openLoopIsOuter_.push_back(area > 0);
+    };
+
+    // Openings: chains that start where a wall edge ends
+    for (const label e : openEdges_)
+    {
+        const label a = edgeNodes_[2*e];
+        bool afterWall = inStart[a] == inStart[a + 1];
+        for (label j = inStart[a]; j < inStart[a + 1]; ++j)
+        {
+            afterWall = afterWall || edgeIsWall_[inEdges[j]];
+        }
+        if (!afterWall || visited[e]) continue;
+        follow(e);
+        const label first = edgeNodes_[2*chain.front()];
+        const label last = edgeNodes_[2*chain.back() + 1];
+        const scalar dx = points_[2*last] - points_[2*first];
+        const scalar dy = points_[2*last + 1] - points_[2*first + 1];
+        const scalar len = std::hypot(dx, dy);
+        if (first == last || !(len > 0))
+        {
+            // Back where it started: a loop that touches a wall at a node
+            addLoop();
+            continue;
+        }
+        // The right of the line from the first end to the last (an edge's
+        // outward normal is on its right)
+        openingLines_.push_back(points_[2*first]);
+        openingLines_.push_back(points_[2*first + 1]);
+        openingLines_.push_back(dy/len);
+        openingLines_.push_back(-dx/len);
+    }
+    // What is left are loops without a wall
+    for (const label e : openEdges_)
+    {
+        if (visited[e]) continue;
+        follow(e);
+        addLoop();
+    }
 }
 
 
@@ -252,6 +372,7 @@ Foam::tankBoundary::tankBoundary
     }
     classifyCells();
     listEdges();
+    findOpenings();
 }
 
 
@@ -283,7 +404,7 @@ bool Foam::tankBoundary::outside(const scalar x, const scalar y) const
     {
         return true;
     }
-    return !inOpenStrip(x, y);
+    return !beyondOpening(x, y);
 }
 
 
