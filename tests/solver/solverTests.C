@@ -2081,8 +2081,8 @@ TEST_F(Solver, outOfRangeSphValueStops)
             {"initialRelaxation", "100001"},
             {"relaxationCoefficient", "0"},
             {"relaxationCoefficient", "0.3"},
-            {"lostParticleDistance", "0"},
-            {"lostParticleDistance", "101"}
+            // Replaced by the tank (tank/leaving): named, not ignored
+            {"lostParticleDistance", "3"}
         }
     )
     {
@@ -2663,6 +2663,217 @@ TEST_F(Solver, freeSurfaceProfileRejectsBadInputNamingTheKeyword)
     functions_ = profileEntry("profile", "        minDivR -1;\n", "1");
     text = runExpectingFatalError();
     expectInLog(text, {"FATAL IO ERROR", "minDivR"});
+}
+
+
+// * * * * * * * * * * * * The tank: leaving it, bodies at the start * * * * //
+
+namespace
+{
+
+//- The particles' log after a column with open sides (walls freeSurface)
+//  collapsed out of the tank, and the numbers of its last report line
+struct leavingRun
+{
+    std::string log;
+    int status = -1;
+    long particlesLeft = -1;
+    long removedSoFar = -1;
+    double removedMassSoFar = -1;
+};
+
+} // End anonymous namespace
+
+
+class SolverTank : public Solver
+{
+protected:
+
+    //- method SPH, the sides open: the column runs out sideways and falls
+    //  past the floor's level, outside the tank (the opening runs from
+    //  one end of the walled floor round to the other: the tank goes on
+    //  above the floor's line only; the particles' kernel support is
+    //  2 h = 0.153 m)
+    leavingRun runLeaving(const std::string& leaving)
+    {
+        useSPH();
+        edit(boundaries_, "walls   { type slipWall; }", "walls   { type freeSurface; }");
+        setControl("endTime", "0.6");
+        setControl("writeInterval", "500");
+        if (!leaving.empty())
+        {
+            boundaries_ += "}\n\ntank\n{\n    leaving " + leaving + ";\n";
+        }
+        leavingRun r;
+        writeCase();
+        r.status = runSolver();
+        r.log = log();
+        std::smatch m;
+        const std::regex left("nodes = [0-9]+, particles = ([0-9]+)");
+        for
+        (
+            auto it = std::sregex_iterator(r.log.begin(), r.log.end(), left);
+            it != std::sregex_iterator();
+            ++it
+        )
+        {
+            r.particlesLeft = std::stol((*it)[1].str());
+        }
+        const std::regex soFar("so far ([0-9]+) particles, ([0-9.eE+-]+) kg/m");
+        for
+        (
+            auto it = std::sregex_iterator(r.log.begin(), r.log.end(), soFar);
+            it != std::sregex_iterator();
+            ++it
+        )
+        {
+            r.removedSoFar = std::stol((*it)[1].str());
+            r.removedMassSoFar = std::stod((*it)[2].str());
+        }
+        return r;
+    }
+};
+
+
+TEST_F(SolverTank, particlesLeavingTheTankStopTheRunNamingTheCause)
+{
+    const leavingRun r = runLeaving("");
+    EXPECT_GT(r.status, 0) << r.log;
+    expectInLog
+    (
+        r.log,
+        {
+            "FATAL ERROR", "outside the tank by more than a kernel support",
+            "tank/leaving", "constant/spemProperties"
+        }
+    );
+    // Not an unstable step: the hint names the tank, not the time step
+    EXPECT_FALSE(contains(r.log, "Reduce maxCo")) << r.log;
+    EXPECT_FALSE(contains(r.log, "\nEnd")) << r.log;
+}
+
+
+TEST_F(SolverTank, removeTakesThemOutAndLogsTheirMass)
+{
+    const leavingRun r = runLeaving("remove");
+    ASSERT_EQ(r.status, 0) << r.log;
+    const long n0 = 2*nCellsX*nCellsY;
+    // One particle per element of rho0 = 1000 kg/m3
+    const double particleMass =
+        waterDensity*(columnWidth/nCellsX)*(columnHeight/nCellsY)/2;
+    std::cout << "tank/leaving remove: " << r.removedSoFar << " of " << n0
+        << " particles removed, " << r.removedMassSoFar << " kg/m; "
+        << r.particlesLeft << " left" << std::endl;
+    ASSERT_GT(r.removedSoFar, 0) << r.log;
+    EXPECT_EQ(r.particlesLeft + r.removedSoFar, n0);
+    EXPECT_NEAR(r.removedMassSoFar, r.removedSoFar*particleMass, 1e-4*particleMass);
+}
+
+
+TEST_F(SolverTank, warnGoesOnAndSaysSo)
+{
+    const leavingRun r = runLeaving("warn");
+    ASSERT_EQ(r.status, 0) << r.log;
+    expectInLog(r.log, {"Warning", "outside the tank", "tank/leaving warn"});
+    EXPECT_EQ(r.particlesLeft, 2*nCellsX*nCellsY);
+}
+
+
+TEST_F(SolverTank, unknownLeavingActionStopsListingThem)
+{
+    boundaries_ += "}\n\ntank\n{\n    leaving vanish;\n";
+    const std::string text = runExpectingFatalError();
+    expectInLog
+    (
+        text,
+        {"FATAL IO ERROR", "vanish", "stop", "remove", "warn", "spemProperties"}
+    );
+}
+
+
+TEST_F(SolverTank, bodyOutsideTheTankStopsAtTheStartNamingIt)
+{
+    rigidBodies_ = floatBody(0.5);
+    edit(rigidBodies_, "centre (0.27 0.6 0)", "centre (0.9 0.6 0)");
+    const std::string text = runExpectingFatalError();
+    expectInLog
+    (
+        text,
+        {
+            "FATAL IO ERROR", "'float'", "bodies/float", "outside the tank",
+            "rigidBodyProperties"
+        }
+    );
+    EXPECT_FALSE(contains(text, "Starting time loop")) << text;
+}
+
+
+TEST_F(SolverTank, bodyOverlappingAWallStopsAtTheStartNamingIt)
+{
+    // Radius 0.06 m, centre 0.03 m from the left wall
+    rigidBodies_ = floatBody(0.5);
+    edit(rigidBodies_, "centre (0.27 0.6 0)", "centre (0.03 0.6 0)");
+    const std::string text = runExpectingFatalError();
+    expectInLog
+    (
+        text,
+        {"FATAL IO ERROR", "bodies/float", "overlaps a wall", "rigidBodyProperties"}
+    );
+    EXPECT_FALSE(contains(text, "Starting time loop")) << text;
+}
+
+
+TEST_F(SolverTank, bodiesOverlappingEachOtherStopAtTheStart)
+{
+    rigidBodies_ =
+        "bodies\n{\n"
+        "    a { shape circle; centre (0.2 0.6 0); radius 0.06; motion free; mass 5; }\n"
+        "    b { shape circle; centre (0.29 0.6 0); radius 0.06; motion free; mass 5; }\n"
+        "}\n";
+    const std::string text = runExpectingFatalError();
+    expectInLog
+    (
+        text,
+        {"FATAL IO ERROR", "bodies/b", "overlaps rigid body 'a'", "rigidBodyProperties"}
+    );
+}
+
+
+TEST_F(SolverTank, bodyTouchingTheFloorStartsAndDoesNotSinkThroughIt)
+{
+    // A heavy free cylinder resting on the floor (density 8 x water):
+    // touching is allowed, and the floor holds it
+    rigidBodies_ = floatBody(8);
+    edit(rigidBodies_, "centre (0.27 0.6 0)", "centre (0.27 0.06 0)");
+    useSPH();
+    setControl("endTime", "0.1");
+    const std::string text = runExpectingSuccess();
+    const std::regex at("body float at \\(([^ ]+) ([^)]+)\\)");
+    double y = -1;
+    for
+    (
+        auto it = std::sregex_iterator(text.begin(), text.end(), at);
+        it != std::sregex_iterator();
+        ++it
+    )
+    {
+        y = std::stod((*it)[2].str());
+    }
+    std::cout << "cylinder on the floor: centre at y = " << y << " m (radius 0.06)"
+        << std::endl;
+    // Its contact points are s = 1 % of its bounding-box diagonal apart
+    // (wallContact::pointSpacing): between two it sinks at most s^2/(8 R)
+    const double s = 0.01*std::sqrt(8.0)*0.06;
+    EXPECT_GE(y, 0.06 - s*s/(8*0.06)) << text;
+}
+
+
+TEST_F(SolverTank, badWallRestitutionStopsNamingIt)
+{
+    rigidBodies_ = floatBody(0.5);
+    edit(rigidBodies_, "motion free;", "motion free; wallRestitution 1.5;");
+    const std::string text = runExpectingFatalError();
+    expectInLog(text, {"FATAL IO ERROR", "wallRestitution", "[0, 1]"});
 }
 
 

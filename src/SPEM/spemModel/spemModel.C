@@ -4,6 +4,7 @@
 #include "checkKeywords.H"
 #include "vtkModelWriter.H"
 
+#include <sstream>
 #include <utility>
 
 namespace Foam
@@ -131,6 +132,107 @@ Foam::scalar Foam::spemModel::readDamping() const
 }
 
 
+Foam::tankBoundary::leavingAction Foam::spemModel::readLeaving() const
+{
+    const dictionary* tankDict = findDict("tank");
+    if (!tankDict) return tankBoundary::leavingAction::stop;
+    checkKeywords(*tankDict, {"leaving"});
+    return tankBoundary::leavingActionNames.getOrDefault
+    (
+        "leaving", *tankDict, tankBoundary::leavingAction::stop
+    );
+}
+
+
+void Foam::spemModel::checkBodiesAtStart() const
+{
+    if (bodies_.empty()) return;
+    const tankBoundary& tank = method_->walls();
+    // Touching is allowed (a body resting on the floor): overlaps below
+    // round-off of the coordinates are not overlaps
+    const scalar touching = 1e-9*tank.size();
+    const scalar spacing = 0.5*tank.reach();
+
+    auto stop = [&](const label b, const std::string& why)
+    {
+        const IOdictionary dict
+        (
+            IOobject
+            (
+                rigidBodies::dictName, runTime_.constant(), runTime_,
+                IOobject::MUST_READ, IOobject::NO_WRITE, false
+            )
+        );
+        FatalIOErrorInFunction(dict.subDict("bodies").subDict(bodies_[b].name()))
+            << "Rigid body '" << bodies_[b].name() << "' (entry bodies/"
+            << bodies_[b].name() << "): " << why.c_str()
+            << exit(FatalIOError);
+    };
+
+    tankBoundary::nearestPoint q;
+    forAll(bodies_, b)
+    {
+        const rigidBody& body = bodies_[b];
+        const vector2D& c = body.position();
+        if (tank.outside(c.x(), c.y()))
+        {
+            std::ostringstream os;
+            os  << "its centre of mass (" << c.x() << ' ' << c.y()
+                << ") is outside the tank (the mesh inside its wall"
+                << " patches): move it into the mesh";
+            stop(b, os.str());
+        }
+        const std::vector<scalar> P = body.surfacePoints(spacing);
+        for (label i = 0; i < label(P.size()/2); ++i)
+        {
+            if
+            (
+                tank.behindWall(P[2*i], P[2*i + 1], q)
+             && q.signedDistance > touching
+            )
+            {
+                std::ostringstream os;
+                os  << "it overlaps a wall: its surface point (" << P[2*i]
+                    << ' ' << P[2*i + 1] << ") is " << q.signedDistance
+                    << " m behind the wall at (" << q.x << ' ' << q.y
+                    << "). Move it into the tank (touching a wall is"
+                    << " allowed)";
+                stop(b, os.str());
+            }
+        }
+        // A corner of the tank inside the body
+        for (label e = 0; e < tank.nEdges(); ++e)
+        {
+            if (!tank.isWall(e)) continue;
+            const label n = tank.edgeNodes()[2*e];
+            const scalar x = tank.points()[2*n], y = tank.points()[2*n + 1];
+            if (body.signedDistance(x, y) < -touching)
+            {
+                std::ostringstream os;
+                os  << "it overlaps a wall: the wall point (" << x << ' '
+                    << y << ") is inside it. Move it into the tank";
+                stop(b, os.str());
+            }
+        }
+        for (label other = 0; other < b; ++other)
+        {
+            for (label i = 0; i < label(P.size()/2); ++i)
+            {
+                if (bodies_[other].signedDistance(P[2*i], P[2*i + 1]) < -touching)
+                {
+                    std::ostringstream os;
+                    os  << "it overlaps rigid body '" << bodies_[other].name()
+                        << "': its surface point (" << P[2*i] << ' '
+                        << P[2*i + 1] << ") is inside it. Bodies may touch"
+                        << " but not overlap";
+                    stop(b, os.str());
+                }
+            }
+        }
+    }
+}
+
+
 void Foam::spemModel::describe() const
 {
     forAll(bodies_, b)
@@ -167,15 +269,28 @@ void Foam::spemModel::describe() const
 }
 
 
-void Foam::spemModel::stopWithLastGoodState(const std::string& failure)
+void Foam::spemModel::stopWithLastGoodState
+(
+    const std::string& failure,
+    const std::string& hint
+)
 {
     // A copy: re-evaluating the good state below clears the failure
     // message of the half that failed
     const std::string why = failure;
     const scalar tFail = runTime_.value();
 
+    // A failure before the first step is the start state's: the input
+    const bool atStart = runTime_.timeIndex() == runTime_.startTimeIndex();
+    const std::string what =
+        atStart
+      ? "The state at the start time " + std::string(runTime_.timeName())
+      + " is not valid: check the case's input (mesh, dictionaries, and the"
+        " restart files of that time). " + hint
+      : hint;
+
     // The failed state is the current one; the previous one is good
-    if (runTime_.timeIndex() > runTime_.startTimeIndex())
+    if (!atStart)
     {
         method_->revertToLastGood();
         runTime_.setTime
@@ -189,8 +304,7 @@ void Foam::spemModel::stopWithLastGoodState(const std::string& failure)
         << "    The last good state (time " << runTime_.timeName()
         << ") has been written to " << runTime_.timePath()
         << " and VTK/." << nl
-        << "    Reduce maxCo or deltaT, or check the set-up near the failure."
-        << exit(FatalError);
+        << "    " << what.c_str() << exit(FatalError);
 }
 
 
@@ -229,7 +343,8 @@ Foam::spemModel::spemModel(Time& runTime)
 {
     checkKeywords
     (
-        *this, {"regions", "boundaries", "damping", "slipCornerAngle"}
+        *this,
+        {"regions", "boundaries", "damping", "slipCornerAngle", "tank"}
     );
     checkKeywords
     (
@@ -254,10 +369,14 @@ Foam::spemModel::spemModel(Time& runTime)
         new spemCase
         {
             runTime_, schemes_, *this, mesh_, bodies_, patchTypes_, g_,
-            damping, getOrDefault<scalar>("slipCornerAngle", 10), restart_
+            damping, getOrDefault<scalar>("slipCornerAngle", 10), restart_,
+            readLeaving()
         }
     );
     method_ = spemMethod::New(*case_, materials);
+    method_->setUpWalls();
+    // The bodies as given (t = 0), before a restart moves them
+    checkBodiesAtStart();
 
     // Restart: the bodies' state (after the set-up, which uses their
     // configuration at t = 0)
@@ -304,7 +423,10 @@ const Foam::sphFluid& Foam::spemModel::particles() const
 
 void Foam::spemModel::evaluate()
 {
-    if (!method_->evaluate()) stopWithLastGoodState(method_->failure());
+    if (!method_->evaluate())
+    {
+        stopWithLastGoodState(method_->failure(), method_->failureHint());
+    }
 }
 
 
@@ -312,7 +434,7 @@ void Foam::spemModel::advance()
 {
     if (!method_->advance(runTime_.deltaTValue()))
     {
-        stopWithLastGoodState(method_->failure());
+        stopWithLastGoodState(method_->failure(), method_->failureHint());
     }
 }
 

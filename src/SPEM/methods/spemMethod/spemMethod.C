@@ -6,6 +6,7 @@
 #include "elementParticleCoupling.H"
 
 #include <cmath>
+#include <sstream>
 
 // * * * * * * * * * * * * * * Static Data Members * * * * * * * * * * * * * //
 
@@ -90,24 +91,9 @@ void Foam::spemMethod::createParticleHalf
             mesh, case_.patchTypes, spacing, layers, fluid.rho(), h, ps
         );
 
-    // Lost particles: beyond the mesh's bounding box enlarged by
-    // lostParticleDistance times its size on every side (see sphFluid)
-    scalar boxMin[2] = {GREAT, GREAT}, boxMax[2] = {-GREAT, -GREAT};
-    const std::vector<scalar>& x = mesh.points();
-    for (label i = 0; i < mesh.nPoints(); ++i)
-    {
-        for (int k = 0; k < 2; ++k)
-        {
-            boxMin[k] = min(boxMin[k], x[2*i + k]);
-            boxMax[k] = max(boxMax[k], x[2*i + k]);
-        }
-    }
-    for (int k = 0; k < 2; ++k)
-    {
-        const scalar size = boxMax[k] - boxMin[k];
-        boxMin[k] -= ctrl.lostParticleDistance*size;
-        boxMax[k] += ctrl.lostParticleDistance*size;
-    }
+    // No box: the tank decides which particles are lost (setTank below);
+    // a particle flown away regardless stops the neighbour search
+    const scalar boxMin[2] = {-GREAT, -GREAT}, boxMax[2] = {GREAT, GREAT};
     particles_.reset
     (
         new sphFluid
@@ -118,6 +104,16 @@ void Foam::spemMethod::createParticleHalf
         )
     );
     particles_->setMassDamping(case_.massDamping);
+    // A particle is outside the tank farther than a kernel support from it:
+    // nearer, it still sees the wall particles
+    particleTank_.reset
+    (
+        new tankBoundary
+        (
+            mesh, case_.patchTypes, kappa*particles_->particles().maxSmoothingLength()
+        )
+    );
+    particles_->setTank(*particleTank_, case_.leaving);
     // The particles continue the elements' leapfrog (converted mid-run) or
     // the restart state's
     particles_->setPreviousDeltaT
@@ -380,10 +376,69 @@ void Foam::spemMethod::refuseInitialRelaxation() const
 }
 
 
-bool Foam::spemMethod::fail(const std::string& why)
+const char* const Foam::spemMethod::unstableHint =
+    "Reduce maxCo or deltaT, or check the set-up near the failure.";
+
+
+bool Foam::spemMethod::fail(const std::string& why, const std::string& hint)
 {
     failure_ = why;
+    failureHint_ = hint;
     return false;
+}
+
+
+bool Foam::spemMethod::checkBodiesInTank()
+{
+    const rigidBodies& bodies = case_.bodies;
+    forAll(bodies, b)
+    {
+        const vector2D& c = bodies[b].position();
+        if (!walls_->outside(c.x(), c.y()) || bodyReported_[b]) continue;
+        std::ostringstream os;
+        os  << "rigid body " << bodies[b].name() << " has left the tank: its"
+            << " centre of mass (" << c.x() << ' ' << c.y() << ") is more"
+            << " than " << walls_->reach() << " m outside it";
+        if (case_.leaving == tankBoundary::leavingAction::warn)
+        {
+            WarningInFunction
+                << "Time = " << case_.runTime.timeName() << ": "
+                << os.str().c_str() << "; the run goes on (tank/leaving warn)"
+                << endl;
+            bodyReported_[b] = true;
+            continue;
+        }
+        return fail
+        (
+            os.str(),
+            "Check the body's motion and the tank's walls. tank/leaving warn"
+            " in constant/spemProperties lets the run go on (a body cannot"
+            " be removed)."
+        );
+    }
+    return true;
+}
+
+
+void Foam::spemMethod::reportParticlesOutside()
+{
+    const sphFluid& p = *particles_;
+    if (p.nRemovedLast() > 0)
+    {
+        Info<< "Time = " << case_.runTime.timeName() << ": removed "
+            << p.nRemovedLast() << " fluid particles outside the tank, mass "
+            << p.removedMassLast() << " kg/m (so far " << p.nRemoved()
+            << " particles, " << p.removedMass() << " kg/m)" << nl;
+    }
+    if (p.nOutside() > nOutsideToWarn_)
+    {
+        WarningInFunction
+            << "Time = " << case_.runTime.timeName() << ": " << p.nOutside()
+            << " fluid particles are outside the tank by more than a kernel"
+            << " support (" << particleTank_->reach() << " m); the run goes"
+            << " on (tank/leaving warn)" << endl;
+        nOutsideToWarn_ = 2*p.nOutside();
+    }
 }
 
 
@@ -394,7 +449,8 @@ Foam::spemMethod::spemMethod(const spemCase& c)
     case_(c),
     elementFluid_(nullptr),
     fluidSpacing_(0),
-    lastDeltaT_(0)
+    lastDeltaT_(0),
+    nOutsideToWarn_(0)
 {}
 
 
@@ -403,17 +459,47 @@ Foam::spemMethod::~spemMethod() = default;
 
 // * * * * * * * * * * * * * * * Member Functions  * * * * * * * * * * * * * //
 
+void Foam::spemMethod::setUpWalls()
+{
+    if (walls_) return;
+    const triMesh& mesh = case_.mesh;
+    // Two mean boundary segments: more than any node or body point moves
+    // in a stable step, and a grid of a few cells per segment
+    scalar length = 0;
+    const std::vector<scalar>& X = mesh.points();
+    for (label s = 0; s < mesh.nSegments(); ++s)
+    {
+        const label a = mesh.segments()[2*s], b = mesh.segments()[2*s + 1];
+        length += std::hypot(X[2*b] - X[2*a], X[2*b + 1] - X[2*a + 1]);
+    }
+    walls_.reset
+    (
+        new tankBoundary
+        (
+            mesh, case_.patchTypes, 2*length/max(label(1), mesh.nSegments())
+        )
+    );
+    if (elements_) wallContact::releaseSolidSlipNodes(*elements_);
+    contact_.reset(new wallContact(*walls_, elements_.get(), case_.bodies));
+    bodyReported_.assign(case_.bodies.size(), false);
+}
+
+
 bool Foam::spemMethod::advance(const scalar dt)
 {
     callHooks(&spemCoupling::beforeElementAdvance);
     if (elements_ && !elements_->advance(dt))
     {
-        return fail(elements_->failure());
+        return fail(elements_->failure(), unstableHint);
+    }
+    if (elements_ && !contact_->correctStructures(*elements_, dt))
+    {
+        return fail(contact_->failure(), unstableHint);
     }
     callHooks(&spemCoupling::afterElementAdvance);
     if (particles_ && !particles_->advance(dt))
     {
-        return fail(particles_->failure());
+        return fail(particles_->failure(), unstableHint);
     }
     // The bodies under the fluid's force of the last evaluation, from
     // t^n = t^{n+1} - dt (the Time is already at the new time)
@@ -428,6 +514,20 @@ bool Foam::spemMethod::advance(const scalar dt)
             case_.g[0], case_.g[1]
         );
     }
+    if (!bodies.empty())
+    {
+        if (!contact_->correctBodies(bodies, dt))
+        {
+            return fail
+            (
+                contact_->failure(),
+                "Reduce maxCo or deltaT if the body moved too far in one"
+                " step; a prescribed motion into a wall must be changed in"
+                " constant/rigidBodyProperties."
+            );
+        }
+        if (!checkBodiesInTank()) return false;
+    }
     callHooks(&spemCoupling::afterBodyAdvance);
     lastDeltaT_ = dt;
     return true;
@@ -439,7 +539,7 @@ bool Foam::spemMethod::evaluate()
     callHooks(&spemCoupling::beforeElementEvaluate);
     if (elements_ && !elements_->evaluate())
     {
-        return fail(elements_->failure());
+        return fail(elements_->failure(), unstableHint);
     }
     if (!particles_) return true;
 
@@ -453,7 +553,19 @@ bool Foam::spemMethod::evaluate()
             structure_.a.data(), structure_.m.data(), structure_.h.data()
         );
     }
-    if (!particles_->evaluate()) return fail(particles_->failure());
+    if (!particles_->evaluate())
+    {
+        return fail
+        (
+            particles_->failure(),
+            particles_->failedLeavingTank()
+          ? "Particles leave the tank: close it with walls where they"
+            " cross, or set tank/leaving to remove (their mass is logged)"
+            " or warn in constant/spemProperties."
+          : unstableHint
+        );
+    }
+    reportParticlesOutside();
 
     // The particles' forces on the elements are the external forces of
     // this evaluation: eq. (25) on the fluid elements' interface, eq. (27)

@@ -20,10 +20,19 @@ Foam::rigidBody::rigidBody(const word& name, const dictionary& dict)
         (
             "fluidElements", dict, elementContact::slide
         )
-    )
+    ),
+    wallRestitution_(dict.getOrDefault<scalar>("wallRestitution", 0))
 {
+    // Written to reject NaN as well
+    if (!(wallRestitution_ >= 0 && wallRestitution_ <= 1))
+    {
+        FatalIOErrorInFunction(dict)
+            << "Entry 'wallRestitution " << wallRestitution_ << "' of "
+            << dict.name() << " must lie in [0, 1] (0: no bounce)"
+            << exit(FatalIOError);
+    }
     // One flat dictionary holds the keywords of both models
-    wordList allowed({"shape", "motion", "fluidElements"});
+    wordList allowed({"shape", "motion", "fluidElements", "wallRestitution"});
     allowed.append(shape_->keywords());
     allowed.append(motion_->keywords());
     checkKeywords(dict, allowed);

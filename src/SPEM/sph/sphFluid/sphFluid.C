@@ -266,11 +266,6 @@ void Foam::sphFluid::controls::readEntries(const dictionary& d)
         (
             "relaxationCoefficient", relaxationCoefficient
         );
-    lostParticleDistance =
-        d.getOrDefault<scalar>
-        (
-            "lostParticleDistance", lostParticleDistance
-        );
 }
 
 
@@ -326,9 +321,18 @@ Foam::sphFluid::controls::read(const dictionary& schemesDict)
     {
         bad("relaxationCoefficient", "must lie in (0, 0.2] (typically 0.1)");
     }
-    if (!(c.lostParticleDistance > 0 && c.lostParticleDistance <= 100))
+    if (d->found("lostParticleDistance"))
     {
-        bad("lostParticleDistance", "must lie in (0, 100] domain sizes (typically 3)");
+        // Replaced by the tank: an old case should not run with a check
+        // it no longer gets
+        bad
+        (
+            "lostParticleDistance",
+            "is no longer read: a particle farther than a kernel support"
+            " outside the tank (its walls) has left it; choose what then"
+            " happens with tank/leaving (stop, remove, warn) in"
+            " constant/spemProperties"
+        );
     }
     return c;
 }
@@ -371,7 +375,15 @@ Foam::sphFluid::sphFluid
     stableDeltaT_(GREAT),
     wallForce_{0, 0},
     ghostForce_{0, 0},
-    structureForce_{0, 0}
+    structureForce_{0, 0},
+    tank_(nullptr),
+    leaving_(tankBoundary::leavingAction::stop),
+    nOutside_(0),
+    nRemovedLast_(0),
+    nRemoved_(0),
+    removedMassLast_(0),
+    removedMass_(0),
+    leftTank_(false)
 {
     for (const particleSet::kind k : particles_.kinds())
     {
@@ -411,9 +423,15 @@ bool Foam::sphFluid::checkParticles()
     const scalar* x = particles_.positions().data();
     const scalar* v = particles_.velocities().data();
     const scalar* rho = particles_.density().data();
-    label bad = -1;
+    const particleSet::kind* kind = particles_.kinds().data();
+    const tankBoundary* tank = tank_;
+    label bad = -1, outside = -1, nOutside = 0;
+    nRemovedLast_ = 0;
+    removedMassLast_ = 0;
+    leftTank_ = false;
 
-    #pragma omp parallel for schedule(static) reduction(max: bad) if(n > minParallelLoop)
+    // Performance critical: every particle, every step (O(1) each)
+    #pragma omp parallel for schedule(static) reduction(max: bad, outside) reduction(+: nOutside) if(n > minParallelLoop)
     for (label i = 0; i < n; ++i)
     {
         const bool ok =
@@ -422,6 +440,60 @@ bool Foam::sphFluid::checkParticles()
          && x[2*i] >= boxMin_[0] && x[2*i] <= boxMax_[0]
          && x[2*i + 1] >= boxMin_[1] && x[2*i + 1] <= boxMax_[1];
         if (!ok) bad = std::max(bad, i);
+        if
+        (
+            tank && kind[i] == particleSet::kind::fluid
+         && tank->outside(x[2*i], x[2*i + 1])
+        )
+        {
+            outside = std::max(outside, i);
+            ++nOutside;
+        }
+    }
+    nOutside_ = nOutside;
+
+    if (bad < 0 && outside >= 0)
+    {
+        if (leaving_ == tankBoundary::leavingAction::warn) return true;
+        if (leaving_ == tankBoundary::leavingAction::remove)
+        {
+            // Rare (a particle leaves once): the compaction may loop over
+            // every particle
+            const std::vector<scalar>& px = particles_.positions();
+            const std::vector<particleSet::kind>& pk = particles_.kinds();
+            const std::vector<scalar>& pm = particles_.mass();
+            removeIf
+            (
+                [&](const label i)
+                {
+                    const bool out =
+                        pk[i] == particleSet::kind::fluid
+                     && tank->outside(px[2*i], px[2*i + 1]);
+                    if (out)
+                    {
+                        ++nRemovedLast_;
+                        removedMassLast_ += pm[i];
+                    }
+                    return out;
+                }
+            );
+            nFluid_ -= nRemovedLast_;
+            nRemoved_ += nRemovedLast_;
+            removedMass_ += removedMassLast_;
+            nOutside_ = 0;
+            resizeFields();
+            return true;
+        }
+        std::ostringstream os;
+        os  << nOutside << " fluid particle" << (nOutside > 1 ? "s are" : " is")
+            << " outside the tank by more than a kernel support ("
+            << tank->reach() << " m), e.g. particle "
+            << particles_.id()[outside] << " at (" << x[2*outside] << ' '
+            << x[2*outside + 1] << ") with velocity (" << v[2*outside] << ' '
+            << v[2*outside + 1] << ')';
+        failure_ = os.str();
+        leftTank_ = true;
+        return false;
     }
     if (bad < 0) return true;
 
@@ -1005,6 +1077,14 @@ void Foam::sphFluid::appendFluid(const particleSet& newParticles)
 
 Foam::label Foam::sphFluid::removeParticles(const particleSet::kind kind)
 {
+    const std::vector<particleSet::kind>& pk = particles_.kinds();
+    return removeIf([&](const label i) { return pk[i] == kind; });
+}
+
+
+template<class Predicate>
+Foam::label Foam::sphFluid::removeIf(const Predicate& remove)
+{
     const label nOld = particles_.size();
     std::vector<scalar>& px = particles_.positions();
     std::vector<scalar>& pv = particles_.velocities();
@@ -1018,7 +1098,8 @@ Foam::label Foam::sphFluid::removeParticles(const particleSet::kind kind)
     label k = 0;
     for (label i = 0; i < nOld; ++i)
     {
-        if (pk[i] == kind) continue;
+        // remove(i) reads particle i before anything overwrites it (k <= i)
+        if (remove(i)) continue;
         if (k != i)
         {
             for (int c = 0; c < 2; ++c)

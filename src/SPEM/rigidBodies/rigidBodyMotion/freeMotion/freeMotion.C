@@ -106,3 +106,44 @@ void Foam::freeMotion::updateVelocity
         angularVelocity_ += span*moment_/momentOfInertia_;
     }
 }
+
+
+Foam::scalar Foam::freeMotion::inverseMassAlong
+(
+    const vector2D& p,
+    const vector2D& n
+) const
+{
+    const vector2D r = p - position();
+    const scalar rxn = r.x()*n.y() - r.y()*n.x();
+    return
+        (held_[0] ? 0 : n.x()*n.x()/mass_)
+      + (held_[1] ? 0 : n.y()*n.y()/mass_)
+      + (held_[2] ? 0 : rxn*rxn/momentOfInertia_);
+}
+
+
+void Foam::freeMotion::applyImpulse(const vector2D& p, const vector2D& J)
+{
+    const vector2D r = p - position();
+    if (!held_[0]) velocity_.x() += J.x()/mass_;
+    if (!held_[1]) velocity_.y() += J.y()/mass_;
+    if (!held_[2])
+    {
+        angularVelocity_ += (r.x()*J.y() - r.y()*J.x())/momentOfInertia_;
+    }
+}
+
+
+void Foam::freeMotion::translate(const vector2D& d)
+{
+    placement_.set
+    (
+        placement_.centre()
+      + vector2D(held_[0] ? 0 : d.x(), held_[1] ? 0 : d.y()),
+        placement_.angle()
+    );
+}
+
+
+// ************************************************************************* //
