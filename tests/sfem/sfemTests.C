@@ -948,3 +948,77 @@ TEST(Materials, weaklyCompressibleFluidGivesStateEquationPressureAndViscousStres
     EXPECT_NEAR(e.P[0], 2e-3*(3 - 1), 1e-15);
     EXPECT_NEAR(e.P[3], 2e-3*(0 - 1), 1e-15);
 }
+
+
+TEST(PatchConditions, fluidNodesSlideOnANoSlipWallHeldByItsShear)
+{
+    // A solid block and a water block side by side on a no-slip floor,
+    // cells 0.25 x 0.25 (the wall triangles' height over the floor h = l)
+    const Foam::triMesh mesh = testMeshes::build
+    (
+        {
+            {0, 0.5, 0, 0.5, 2, 2, "plate"},
+            {0.5, 1.5, 0, 0.5, 4, 2, "water"}
+        }
+    );
+    const scalar mu = 2e-3;
+    std::vector<scalar> viscosity(mesh.nTriangles());
+    for (label t = 0; t < mesh.nTriangles(); ++t)
+    {
+        const bool water =
+            mesh.regionNames()[mesh.triangleRegion()[t]] == "water";
+        viscosity[t] = water ? mu : -1;
+    }
+    std::vector<elementModel::constraint> c;
+    std::vector<scalar> normal, friction;
+    nodeConstraints
+    (
+        mesh,
+        testModels::patchTypes(mesh, {{"bottom", patchType::noSlipWall}}),
+        10, c, normal, &viscosity, &friction
+    );
+    label nSlide = 0;
+    for (label n = 0; n < mesh.nPoints(); ++n)
+    {
+        const scalar x = mesh.points()[2*n], y = mesh.points()[2*n + 1];
+        if (y > 1e-12)
+        {
+            EXPECT_EQ(c[n], elementModel::constraint::free);
+            EXPECT_EQ(friction[n], 0);
+            continue;
+        }
+        if (x < 0.5 + 1e-12)
+        {
+            // Nodes of the solid, and the one it shares with the water
+            EXPECT_EQ(c[n], elementModel::constraint::fixed) << "x = " << x;
+            EXPECT_EQ(friction[n], 0);
+            continue;
+        }
+        ++nSlide;
+        EXPECT_EQ(c[n], elementModel::constraint::slip) << "x = " << x;
+        EXPECT_NEAR(normal[2*n], 0, 1e-15);
+        EXPECT_NEAR(normal[2*n + 1], -1, 1e-15);
+        // mu l/h from each wall side: two, one at the floor's end
+        const scalar sides = x > 1.5 - 1e-12 ? 1 : 2;
+        EXPECT_NEAR(friction[n], sides*mu, 1e-15) << "x = " << x;
+    }
+    EXPECT_EQ(nSlide, 4);
+
+    // Without viscosities the floor pins every node, as before
+    nodeConstraints
+    (
+        mesh,
+        testModels::patchTypes(mesh, {{"bottom", patchType::noSlipWall}}),
+        10, c, normal
+    );
+    for (label n = 0; n < mesh.nPoints(); ++n)
+    {
+        if (mesh.points()[2*n + 1] < 1e-12)
+        {
+            EXPECT_EQ(c[n], elementModel::constraint::fixed);
+        }
+    }
+}
+
+
+// ************************************************************************* //

@@ -469,6 +469,189 @@ TEST(SpemValidation, damBreakElasticPlateWithParticlesOnlyBendsThePlate)
 }
 
 
+namespace
+{
+
+//- Run the damBreak tutorial to the surge's arrival at the far wall with
+//  the given method and a topmost free-surface profile every 0.025 s;
+//  the profile of each write, by time (empty on a failure)
+std::vector<std::pair<double, std::vector<std::vector<double>>>>
+damBreakProfiles(const std::string& method, const bool slide = false)
+{
+    const fs::path caseDir =
+        copyTutorial
+        (
+            "damBreak", "spemDamBreakSurface" + method + (slide ? "Slide" : "")
+        );
+    replaceEntry(caseDir/"system/spemSchemes", "method", method);
+    if (slide)
+    {
+        std::string text =
+            testFiles::readText(caseDir/"constant/spemProperties");
+        const std::string walls = "walls       { type noSlipWall; }";
+        const size_t at = text.find(walls);
+        if (at == std::string::npos) return {};
+        text.replace
+        (
+            at, walls.size(),
+            "walls { type noSlipWall; fluidElements slide; }"
+        );
+        std::ofstream(caseDir/"constant/spemProperties") << text;
+    }
+    replaceEntry(caseDir/"system/controlDict", "endTime", "0.25");
+    replaceEntry(caseDir/"system/controlDict", "writeInterval", "0.025");
+    std::string text = testFiles::readText(caseDir/"system/controlDict");
+    const std::string functions = "functions\n{";
+    const size_t at = text.find(functions);
+    if (at == std::string::npos) return {};
+    text.insert
+    (
+        at + functions.size(),
+        "\n    surface { type freeSurfaceProfile;"
+        " writeControl adjustableRunTime;"
+        " writeInterval 0.025; }\n"
+    );
+    std::ofstream(caseDir/"system/controlDict") << text;
+    if (!runCase(caseDir)) return {};
+
+    std::vector<std::pair<double, std::vector<std::vector<double>>>> out;
+    const fs::path dir = caseDir/"postProcessing/surface/0";
+    for (const auto& e : fs::directory_iterator(dir))
+    {
+        if (!e.is_directory()) continue;
+        out.emplace_back
+        (
+            std::stod(e.path().filename().string()),
+            readTable(e.path()/"surface.dat")
+        );
+    }
+    std::sort
+    (
+        out.begin(), out.end(),
+        [](const auto& a, const auto& b) { return a.first < b.first; }
+    );
+    return out;
+}
+
+
+//- damBreak at nx 20 with both methods until the surge reaches the far
+//  wall (t = 0.25 s): column a = 0.146 m wide, 2a high, particle spacing
+//  dx = a/(nx sqrt 2). The SPEM run (elements that convert as they
+//  distort) must not lift water above the column; with keepToParticles
+//  its surface must also stay within two spacings of the particle run's
+//  (issue 16)
+void damBreakSurfaces(const bool keepToParticles, const bool slide)
+{
+    SCOPED_TRACE(slide ? "fluidElements slide" : "fluidElements pinned");
+    const double a = 0.146, dx = a/(20*std::sqrt(2.0));
+    const std::vector<std::vector<double>> columnHeight =
+        readTable
+        (
+            fs::path(SPEM_PROJECT_DIR)
+           /"tutorials/damBreak/referenceData/MartinMoyce1952_columnHeight.dat"
+        );
+    ASSERT_GT(columnHeight.size(), 10u);
+    const auto sph = damBreakProfiles("SPH");
+    const auto spem = damBreakProfiles("SPEM", slide);
+    ASSERT_EQ(sph.size(), 10u);
+    ASSERT_EQ(spem.size(), sph.size());
+    for (size_t k = 0; k < sph.size(); ++k)
+    {
+        const double t = sph[k].first;
+        ASSERT_NEAR(spem[k].first, t, 1e-9);
+        const auto& p = sph[k].second;
+        const auto& q = spem[k].second;
+        ASSERT_FALSE(p.empty());
+        ASSERT_FALSE(q.empty());
+        double top = 0;
+        for (const auto& row : q) top = std::max(top, row[1]);
+
+        // The distance of each free-surface point (particle or element
+        // node) of one run from the nearest of the other's, both ways: the
+        // surfaces, faces included
+        double largest = 0, xLargest = 0, yLargest = 0;
+        const auto fromOther =
+            [&](const std::vector<std::vector<double>>& points,
+                const std::vector<std::vector<double>>& other)
+            {
+                for (const auto& pt : points)
+                {
+                    double d = INFINITY;
+                    for (const auto& o : other)
+                    {
+                        d = std::min(d, std::hypot(pt[0] - o[0], pt[1] - o[1]));
+                    }
+                    if (d > largest)
+                    {
+                        largest = d;
+                        xLargest = pt[0];
+                        yLargest = pt[1];
+                    }
+                }
+            };
+        fromOther(q, p);
+        fromOther(p, q);
+
+        // The water's height on the back wall (the highest surface point
+        // within two spacings of it) against Martin and Moyce (1952)
+        const auto wallHeight =
+            [&](const std::vector<std::vector<double>>& points)
+            {
+                double h = 0;
+                for (const auto& pt : points)
+                {
+                    if (pt[0] < 2*dx) h = std::max(h, pt[1]);
+                }
+                return h;
+            };
+        const double T = t*std::sqrt(9.81/a);
+        double hExp = NAN;
+        for (size_t i = 0; i + 1 < columnHeight.size(); ++i)
+        {
+            const auto& r0 = columnHeight[i];
+            const auto& r1 = columnHeight[i + 1];
+            if (T < r0[0] || T > r1[0]) continue;
+            hExp =
+                2*a*(r0[1] + (T - r0[0])/(r1[0] - r0[0])*(r1[1] - r0[1]));
+        }
+        std::printf
+        (
+            "damBreak, fluidElements %s, t = %.3f s: SPEM top %.4f m (column 2a = %.4f m);"
+            " largest distance between the surfaces %.4f m = %.1f spacings"
+            " at (%.3f %.3f) m; on the back wall SPH %.4f m, SPEM %.4f m,"
+            " Martin and Moyce %.4f m\n",
+            slide ? "slide" : "pinned", t, top, 2*a, largest, largest/dx,
+            xLargest, yLargest, wallHeight(p), wallHeight(q), hExp
+        );
+        EXPECT_LT(top, 2*a + dx) << "t = " << t;
+        if (keepToParticles)
+        {
+            EXPECT_LT(largest, 2*dx) << "t = " << t;
+        }
+    }
+}
+
+} // End anonymous namespace
+
+
+TEST(SpemValidation, damBreakWithElementsLiftsNoWaterAboveTheColumn)
+{
+    damBreakSurfaces(false, false);
+    damBreakSurfaces(false, true);
+}
+
+
+// Not yet: with fluidElements slide, from t = 0.2 s the water on the back
+// wall stands 2.3-4.3 spacings higher with SPEM than with SPH (pinned:
+// 7-10 spacings from t = 0.05 s on). Martin and Moyce's height lies
+// between the two: SPEM +0.0022, +0.0090, +0.0174 m, SPH -0.0097,
+// -0.0099, -0.0042 m at t = 0.2, 0.225, 0.25 s
+TEST(SpemValidation, DISABLED_damBreakSurfaceWithElementsKeepsToTheParticles)
+{
+    damBreakSurfaces(true, true);
+}
+
+
 TEST(SpemValidation, submergedCylinderFeelsArchimedesBuoyancy)
 {
     // Tank 0.5 m x 0.5 m of water at rest; a cylinder of radius 0.08 m

@@ -69,6 +69,7 @@ void Foam::spemModel::readBoundaries()
     }
 
     patchTypes_.setSize(mesh_.nPatches());
+    slidingNoSlip_.setSize(mesh_.nPatches(), false);
     forAll(mesh_.patchNames(), p)
     {
         const word& name = mesh_.patchNames()[p];
@@ -79,8 +80,26 @@ void Foam::spemModel::readBoundaries()
                 << "': every mesh patch needs a condition, one of "
                 << patchTypeNames << exit(FatalIOError);
         }
-        checkKeywords(bcDict.subDict(name), {"type"});
-        patchTypes_[p] = patchTypeNames.get("type", bcDict.subDict(name));
+        const dictionary& d = bcDict.subDict(name);
+        checkKeywords(d, {"type", "fluidElements"});
+        patchTypes_[p] = patchTypeNames.get("type", d);
+        // How the nodes of fluid elements meet a no-slip wall (see
+        // patchConditions): pinned (default) or slide with the wall shear
+        const word fluidElements =
+            d.getOrDefault<word>("fluidElements", "pinned");
+        if
+        (
+            (fluidElements != "pinned" && fluidElements != "slide")
+         || (fluidElements == "slide" && patchTypes_[p] != patchType::noSlipWall)
+        )
+        {
+            FatalIOErrorInFunction(d)
+                << "boundaries/" << name << "/fluidElements: 'pinned' or"
+                << " 'slide' on a noSlipWall patch, found '" << fluidElements
+                << "' on a " << patchTypeNames[patchTypes_[p]] << " patch"
+                << exit(FatalIOError);
+        }
+        slidingNoSlip_[p] = fluidElements == "slide";
     }
 }
 
@@ -370,7 +389,7 @@ Foam::spemModel::spemModel(Time& runTime)
         {
             runTime_, schemes_, *this, mesh_, bodies_, patchTypes_, g_,
             damping, getOrDefault<scalar>("slipCornerAngle", 10), restart_,
-            readLeaving()
+            readLeaving(), slidingNoSlip_
         }
     );
     method_ = spemMethod::New(*case_, materials);

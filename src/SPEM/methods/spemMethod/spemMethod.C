@@ -50,12 +50,25 @@ void Foam::spemMethod::createElementHalf
         new elementModel(case_.mesh, std::move(materials), density)
     );
     std::vector<elementModel::constraint> c;
-    std::vector<scalar> normal;
+    std::vector<scalar> normal, friction;
+    // The viscosity of each triangle's fluid for the weak no-slip of fluid
+    // elements (negative: a solid)
+    const std::vector<label>& region = case_.mesh.triangleRegion();
+    std::vector<scalar> viscosity(case_.mesh.nTriangles(), 0);
+    for (label t = 0; t < case_.mesh.nTriangles(); ++t)
+    {
+        const label r = region[t];
+        if (!elements_->hasMaterial(r)) continue;
+        const spemMaterial& m = elements_->material(r);
+        viscosity[t] = m.isFluid() ? m.rho()*m.kinematicViscosity() : -1;
+    }
     nodeConstraints
     (
-        case_.mesh, case_.patchTypes, case_.slipCornerAngle, c, normal
+        case_.mesh, case_.patchTypes, case_.slipCornerAngle, c, normal,
+        &viscosity, &friction, &case_.slidingNoSlip
     );
     elements_->setConstraints(std::move(c), std::move(normal));
+    elements_->setWallFriction(std::move(friction));
     elements_->setGravity(case_.g[0], case_.g[1]);
     elements_->setMassDamping(case_.massDamping);
     if (case_.restart.readElements(*elements_))

@@ -700,6 +700,15 @@ bool Foam::elementModel::advance(const scalar dt)
                     vn[0]*nn[0] + vn[1]*nn[1] - nodeNormalSpeed_[n];
                 vn[0] -= vnn*nn[0];
                 vn[1] -= vnn*nn[1];
+                // A fixed no-slip wall's shear, -k v_t, implicit over the
+                // span: stable for any k (patchConditions)
+                if (!wallFriction_.empty() && wallFriction_[n] > 0)
+                {
+                    const scalar hold =
+                        1/(1 + gain*wallFriction_[n]*invM);
+                    vn[0] *= hold;
+                    vn[1] *= hold;
+                }
             }
             else
             {
