@@ -2,6 +2,7 @@
 #include "elementModel.H"
 #include "sphFluid.H"
 #include "checkKeywords.H"
+#include "Switch.H"
 
 #include <algorithm>
 #include <cmath>
@@ -39,6 +40,7 @@ Foam::elementParticleCoupling::elementParticleCoupling
     ghostSearch_(ghostSearchType::particleSupport),
     imbalance_{0, 0},
     velocityCorrection_(0.1),
+    interfaceSuction_(true),
     smoothingLengthRatio_(smoothingLengthRatio)
 {
     const dictionary* d = schemesDict.findDict("coupling");
@@ -46,8 +48,14 @@ Foam::elementParticleCoupling::elementParticleCoupling
     {
         checkKeywords
         (
-            *d, {"interfaceVelocityCorrection", "interfaceForce", "ghostSearch"}
+            *d,
+            {
+                "interfaceVelocityCorrection", "interfaceForce",
+                "ghostSearch", "interfaceSuction"
+            }
         );
+        interfaceSuction_ =
+            d->getOrDefault<Switch>("interfaceSuction", interfaceSuction_);
         ghostSearch_ =
             ghostSearchTypeNames.getOrDefault("ghostSearch", *d, ghostSearch_);
         velocityCorrection_ =
@@ -371,8 +379,9 @@ void Foam::elementParticleCoupling::interfaceTraction
                             );
                     }
                 );
-                // No particle in reach: a free surface; a wall only pushes
-                nodePressure_[n] = sumW > 0 ? max(sumP/sumW, scalar(0)) : 0;
+                // No particle in reach: a free surface
+                const scalar pn = sumW > 0 ? sumP/sumW : 0;
+                nodePressure_[n] = interfaceSuction_ ? pn : max(pn, scalar(0));
             }
         }
     );

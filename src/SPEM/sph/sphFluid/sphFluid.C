@@ -1,4 +1,5 @@
 #include "sphFluid.H"
+#include "Switch.H"
 #include "dictionary.H"
 #include "checkKeywords.H"
 #include "parallelLoop.H"
@@ -266,6 +267,8 @@ void Foam::sphFluid::controls::readEntries(const dictionary& d)
         (
             "relaxationCoefficient", relaxationCoefficient
         );
+    structureSuction =
+        d.getOrDefault<Switch>("structureSuction", structureSuction);
 }
 
 
@@ -283,7 +286,7 @@ Foam::sphFluid::controls::read(const dictionary& schemesDict)
             "smoothingLengthRatio", "gradientCorrection", "densityDiffusion",
             "shifting", "freeSurfaceThreshold", "wallLayers",
             "momentumGradient", "initialRelaxation", "relaxationCoefficient",
-            "lostParticleDistance"
+            "lostParticleDistance", "structureSuction"
         }
     );
     c.readEntries(*d);
@@ -671,6 +674,7 @@ void Foam::sphFluid::wallPass(const Kernel&)
     const label* __restrict__ id = particles_.id().data();
     const scalar* __restrict__ aStructure = structureAcceleration_.data();
     const scalar c2 = c_*c_, rho0 = rho0_;
+    const bool structureSuction = controls_.structureSuction;
 
     #pragma omp parallel for schedule(static) if(n > minParallelLoop)
     for (label w = 0; w < n; ++w)
@@ -713,8 +717,11 @@ void Foam::sphFluid::wallPass(const Kernel&)
         if (sumW > 0)
         {
             // Adami et al. 2012, (g - a_w) with the wall's acceleration
+            const scalar pExtrapolated =
+                (sumP + gx*sumRhoX + gy*sumRhoY)/sumW;
             const scalar pw =
-                std::max((sumP + gx*sumRhoX + gy*sumRhoY)/sumW, scalar(0));
+                structure && structureSuction
+              ? pExtrapolated : std::max(pExtrapolated, scalar(0));
             p[w] = pw;
             rho[w] = rho0 + pw/c2;
             // No-slip: mirrored fluid velocity, 2 v_w - v_f; free-slip
