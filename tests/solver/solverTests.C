@@ -1176,6 +1176,110 @@ TEST_F(SolverRestart, everyWrittenStateListsItsFilesAndNoPartialFolderIsLeft)
 }
 
 
+//- Every file of <time>/spem of case A is in B's, with the same bytes;
+//  the number of files that differ (0: bit for bit)
+int differingStateFiles
+(
+    const fs::path& caseA,
+    const fs::path& caseB,
+    const std::string& time
+)
+{
+    int nDiffer = 0;
+    for (const fs::directory_entry& f : fs::directory_iterator(caseA/time/"spem"))
+    {
+        const fs::path other = caseB/time/"spem"/f.path().filename();
+        const bool same =
+            fs::exists(other) && readText(f.path()) == readText(other);
+        if (!same)
+        {
+            ++nDiffer;
+            std::cout << "differs: " << other << std::endl;
+        }
+    }
+    return nDiffer;
+}
+
+
+TEST_F(SolverRestart, sphRestartContinuesBitForBit)
+{
+    // A: continuously to 2T; B: to T, then on to 2T from its latest time.
+    // T = 150 steps of 0.4 ms, not a multiple of the 20 steps between two
+    // sorts by cell: the restart must store the particles in the order the
+    // running process had and sort at its steps (the neighbour sums run in
+    // storage order; before, the restart differed by 1e-15 relative)
+    useSPH();
+    const std::string T = "0.06", twoT = "0.12";
+    setControl("writeInterval", "50");
+    fs::path caseA, caseB;
+    runContinuousAndRestarted
+    (
+        T, twoT,
+        [](const fs::path&) { return std::vector<std::string>(); },
+        caseA, caseB
+    );
+    if (HasFailure()) return;
+    EXPECT_TRUE(fs::exists(caseB/T/"spem"/"particleOrder"));
+    EXPECT_EQ(differingStateFiles(caseA, caseB, twoT), 0);
+    const double xError = relativeDifference
+    (
+        readState(twoT, "particlePositions", caseA),
+        readState(twoT, "particlePositions", caseB)
+    );
+    std::cout << "SPH restart: positions differ by " << xError
+        << " relative" << std::endl;
+    EXPECT_EQ(xError, 0);
+}
+
+
+TEST_F(SolverRestart, spemRestartAfterConversionsWithAdjustedStepsIsBitForBit)
+{
+    // Method SPEM, a heavy cylinder sinking in the column: its elements
+    // distort and convert from about 0.07 s on, so the state at T holds
+    // elements, particles and the interface. The steps are adjusted and
+    // land on the write times (writeControl adjustableRunTime): the
+    // landing must be computed as the continuous run computes it (before,
+    // from the restart's start time, the steps differed at round-off)
+    const std::string T = "0.08", twoT = "0.12";
+    nx_ = 20;
+    ny_ = 40;
+    setControl("adjustTimeStep", "yes");
+    setControl("maxCo", "0.5");
+    setControl("deltaT", "1e-4");
+    setControl("writeControl", "adjustableRunTime");
+    setControl("writeInterval", "0.04");
+    rigidBodies_ = floatBody(3);
+    fs::path caseA, caseB;
+    runContinuousAndRestarted
+    (
+        T, twoT,
+        [](const fs::path&)
+        {
+            return std::vector<std::string>{"Restart: read", "fluid particles"};
+        },
+        caseA, caseB
+    );
+    if (HasFailure()) return;
+    EXPECT_TRUE(fs::exists(caseB/T/"spem"/"convertedTriangles"));
+    EXPECT_TRUE(contains(log(), "Conversion at time"));
+    EXPECT_EQ(differingStateFiles(caseA, caseB, twoT), 0);
+    const double xError = relativeDifference
+    (
+        readState(twoT, "points", caseA), readState(twoT, "points", caseB)
+    );
+    const double pError = relativeDifference
+    (
+        readState(twoT, "particlePositions", caseA),
+        readState(twoT, "particlePositions", caseB)
+    );
+    std::cout << "SPEM restart after conversions: points differ by "
+        << xError << ", particle positions by " << pError << " relative"
+        << std::endl;
+    EXPECT_EQ(xError, 0);
+    EXPECT_EQ(pError, 0);
+}
+
+
 //- Fixture: a state written to T, damaged, and a run on from it
 class SolverDamagedRestart : public SolverRestart
 {
@@ -1881,11 +1985,9 @@ TEST_F(Solver, sphRestartContinuesFromWrittenParticleState)
     std::cout << "SPH restart: relative difference of the final states:"
         << " positions " << xError << ", U " << UError << ", rho "
         << rhoError << std::endl;
-    // writePrecision 17: doubles survive the text round trip. The restart
-    // sorts the particles by cell at other steps, which changes only the
-    // order of the sums: round-off (measured 1e-14 for U with
-    // gradientCorrection none and shifting 0, the terms that need no
-    // state of the previous step)
+    // writePrecision 17: doubles survive the text round trip; the
+    // restart keeps the storage order of the particles, so this is bit for
+    // bit (SolverRestart.sphRestartContinuesBitForBit checks that)
     EXPECT_LE(xError, 1e-12);
     EXPECT_LE(UError, 1e-12);
     EXPECT_LE(rhoError, 1e-12);
@@ -1937,7 +2039,7 @@ TEST_F(Solver, spemRestartWithASlidingFreeBodyContinuesExactly)
     // to 2T; B: to T, then on to 2T from its latest time. 20 cells across
     // the column: 2.4 across the cylinder. At T the elements still slide
     // on it; by 2T they have distorted and become particles (a restart
-    // after conversions, SPEM's own, differs by about 1e-11)
+    // after conversions: SolverRestart.spemRestartAfterConversions...)
     const std::string T = "0.05", twoT = "0.1";
     nx_ = 20;
     ny_ = 40;

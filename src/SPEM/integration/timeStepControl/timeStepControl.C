@@ -63,8 +63,15 @@ void Foam::timeStepControl::checkControlDict() const
 
 Foam::scalar Foam::timeStepControl::stepToWriteTime(const scalar dt) const
 {
-    const scalar t = runTime_.value() - startTime_;
+    // The write times are multiples of writeInterval from the start time.
+    // A restart starts on one of the first run's write times: measured
+    // from 0 as that run measured them, the steps are the same to the bit
+    // (measured from the restart's start, they differ at round-off)
     const scalar tol = 1e-9*writeInterval_;
+    const scalar phase =
+        startTime_ - std::round(startTime_/writeInterval_)*writeInterval_;
+    const scalar origin = std::abs(phase) < tol ? 0 : startTime_;
+    const scalar t = runTime_.value() - origin;
     const scalar next =
         (std::floor((t + tol)/writeInterval_) + 1)*writeInterval_;
     const scalar toNext = next - t;

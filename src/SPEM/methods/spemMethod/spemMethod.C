@@ -133,6 +133,18 @@ void Foam::spemMethod::createParticleHalf
         // Restart: the fluid particles come first; walls start at rho0
         rhoOld.resize(particles_->particles().size(), fluid.rho());
         particles_->setOldDensity(rhoOld);
+        std::vector<label> order;
+        label stepsSinceSort = 0;
+        if
+        (
+            case_.restart.readParticleOrder
+            (
+                particles_->particles(), order, stepsSinceSort
+            )
+        )
+        {
+            particles_->restoreOrder(order, stepsSinceSort);
+        }
     }
 
     const sphFluid::controls& c = particles_->schemeControls();

@@ -446,6 +446,9 @@ bool Foam::sphFluid::checkParticles()
 void Foam::sphFluid::reorder()
 {
     const std::vector<label>& order = cells_.sortOrder();
+    // Kept for evaluationOrder(); the capacity stays, so this allocates
+    // only when the particle count grows
+    lastSortOrder_.assign(order.begin(), order.end());
     particles_.reorder(order);
     particles_.reorderField(order, 2, oldPosition_);
     particles_.reorderField(order, 2, oldVelocity_);
@@ -817,6 +820,7 @@ bool Foam::sphFluid::evaluate()
 
     const scalar kappa = kernel_->support();
     cells_.update(particles_, kappa*particles_.maxSmoothingLength());
+    lastSortOrder_.clear();
     if (++stepsSinceReorder_ >= reorderInterval)
     {
         reorder();
@@ -1143,6 +1147,61 @@ void Foam::sphFluid::setGhosts
 void Foam::sphFluid::setOldDensity(const std::vector<scalar>& rhoOld)
 {
     oldDensity_ = rhoOld;
+}
+
+
+void Foam::sphFluid::evaluationOrder(std::vector<label>& order) const
+{
+    const label n = particles_.size();
+    const std::vector<particleSet::kind>& kind = particles_.kinds();
+    const auto keep = [&](const label i)
+    {
+        return
+            kind[i] == particleSet::kind::fluid
+         || kind[i] == particleSet::kind::wall
+         || kind[i] == particleSet::kind::slipWall;
+    };
+    order.clear();
+    if (label(lastSortOrder_.size()) != n)
+    {
+        for (label i = 0; i < n; ++i)
+        {
+            if (keep(i)) order.push_back(i);
+        }
+        return;
+    }
+    // The particle now at i was at lastSortOrder_[i] before the sort
+    std::vector<label> before(n);
+    for (label i = 0; i < n; ++i) before[lastSortOrder_[i]] = i;
+    for (const label i : before)
+    {
+        if (keep(i)) order.push_back(i);
+    }
+}
+
+
+void Foam::sphFluid::restoreOrder
+(
+    const std::vector<label>& newToOld,
+    const label stepsSinceReorder
+)
+{
+    const label n = particles_.size();
+    std::vector<label> order(newToOld);
+    std::vector<bool> placed(n, false);
+    for (const label i : newToOld) placed[i] = true;
+    for (label i = 0; i < n; ++i)
+    {
+        if (!placed[i]) order.push_back(i);
+    }
+    particles_.reorder(order);
+    particles_.reorderField(order, 2, oldPosition_);
+    particles_.reorderField(order, 2, oldVelocity_);
+    particles_.reorderField(order, 1, oldDensity_);
+    // evaluate() counts this step before it decides to sort: one less,
+    // and a sort there (0) is the step before reorderInterval
+    stepsSinceReorder_ =
+        stepsSinceReorder > 0 ? stepsSinceReorder - 1 : reorderInterval - 1;
 }
 
 

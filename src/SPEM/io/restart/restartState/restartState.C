@@ -167,6 +167,34 @@ void Foam::restartState::writeParticles(const sphFluid& particles) const
     {
         writeExact(*f);
     }
+
+    // The storage order the next evaluation starts from: fluid particle k
+    // of the files above is k, wall particle r (by id) is nFluid + r
+    std::vector<label> code(ps.size(), -1);
+    forAll(xf, k) code[order[k]] = k;
+    std::vector<label> walls;
+    for (label i = 0; i < ps.size(); ++i)
+    {
+        if (particleSet::isWall(ps.kinds()[i])
+         && ps.kinds()[i] != particleSet::kind::structure)
+        {
+            walls.push_back(i);
+        }
+    }
+    std::sort
+    (
+        walls.begin(), walls.end(),
+        [&](const label a, const label b) { return ps.id()[a] < ps.id()[b]; }
+    );
+    forAll(walls, r) code[walls[r]] = nFluid + r;
+    std::vector<label> evaluation;
+    particles.evaluationOrder(evaluation);
+    IOdictionary storage(outFile("particleOrder"));
+    labelList slots(label(evaluation.size()));
+    forAll(slots, s) slots[s] = code[evaluation[s]];
+    storage.add("order", slots);
+    storage.add("stepsSinceSort", particles.stepsSinceReorder());
+    writeExact(storage, true);
 }
 
 
@@ -421,6 +449,64 @@ bool Foam::restartState::readParticles
     rhoOld.assign(old.begin(), old.end());
     Info<< "Restart: read " << n << " fluid particles from " << xIO.path()
         << nl << endl;
+    return true;
+}
+
+
+bool Foam::restartState::readParticleOrder
+(
+    const particleSet& particles,
+    std::vector<label>& newToOld,
+    label& stepsSinceSort
+) const
+{
+    const IOobject io(file("particleOrder"));
+    if (!listed<IOdictionary>(io)) return false;
+    const IOdictionary storage(io);
+    const labelList slots(storage.get<labelList>("order"));
+    stepsSinceSort = storage.get<label>("stepsSinceSort");
+
+    // Fluid particles and walls, each in the order of their ids
+    std::vector<label> fluid, walls;
+    for (label i = 0; i < particles.size(); ++i)
+    {
+        const particleSet::kind k = particles.kinds()[i];
+        if (k == particleSet::kind::fluid) fluid.push_back(i);
+        else if (k == particleSet::kind::wall || k == particleSet::kind::slipWall)
+        {
+            walls.push_back(i);
+        }
+    }
+    const auto byId = [&](const label a, const label b)
+    {
+        return particles.id()[a] < particles.id()[b];
+    };
+    std::sort(fluid.begin(), fluid.end(), byId);
+    std::sort(walls.begin(), walls.end(), byId);
+    const label nFluid = label(fluid.size());
+    const label n = nFluid + label(walls.size());
+    if (slots.size() != n || stepsSinceSort < 0)
+    {
+        bad
+        (
+            io,
+            std::to_string(slots.size()) + " slots for "
+          + std::to_string(nFluid) + " fluid and "
+          + std::to_string(walls.size()) + " wall particles"
+        );
+    }
+    std::vector<bool> seen(n, false);
+    newToOld.resize(n);
+    forAll(slots, s)
+    {
+        const label c = slots[s];
+        if (c < 0 || c >= n || seen[c])
+        {
+            bad(io, "slot " + std::to_string(s) + " is out of range or repeated");
+        }
+        seen[c] = true;
+        newToOld[s] = c < nFluid ? fluid[c] : walls[c - nFluid];
+    }
     return true;
 }
 
