@@ -1379,6 +1379,73 @@ TEST_F(Solver, logGivesTheStepCountToEndTimeAndTheProgress)
 }
 
 
+TEST_F(Solver, logNamesWhatSetsTheStepAndEstimatesTheWallTime)
+{
+    // The elements' acoustic limit h/c (c 20 m/s) is the smallest; the
+    // estimate comes after the first wallEstimateSteps = 20 steps (all of
+    // them here)
+    const std::string text = runExpectingSuccess();
+    expectInLog
+    (
+        text,
+        {
+            "set by the acoustic limit of the elements of region water",
+            "c 20 m/s (entry c)", "(maxSteps 10000000)",
+            "wall time: estimated after the first 20 steps",
+            "Wall time: about", "s to endTime (from the first 20 steps"
+        }
+    );
+}
+
+
+TEST_F(Solver, absurdViscosityStopsAtMaxStepsNamingTheViscousLimit)
+{
+    // mu 1e10 Pa s: the explicit viscous limit 0.25 h^2 rho/mu is about
+    // 1e-13 s, some 1e11 steps to 0.02 s; it used to run them in silence
+    for (const std::string method : {"SPEM", "SPH"})
+    {
+        SCOPED_TRACE(method);
+        schemes_ = "method          " + method + ";\n";
+        edit(regions_, "mu      1e-3;", "mu      1e10;");
+        setControl("adjustTimeStep", "yes");
+        const std::string text = runExpectingFatalError();
+        expectInLog
+        (
+            text,
+            {
+                "FATAL IO ERROR", "maxSteps 10000000", "controlDict",
+                "set by the viscous limit of the ",
+                method == "SPH" ? "fluid particles" : "region water",
+                "mu 1e+10 Pa s", "(entries mu, rho)"
+            }
+        );
+        EXPECT_FALSE(contains(text, "Starting time loop")) << text;
+        edit(regions_, "mu      1e10;", "mu      1e-3;");
+    }
+}
+
+
+TEST_F(Solver, runPastMaxStepsStopsAndNonPositiveMaxStepsIsRefused)
+{
+    // 20 steps of 1 ms to endTime 0.02
+    setControl("maxSteps", "19");
+    std::string text = runExpectingFatalError();
+    expectInLog
+    (
+        text, {"FATAL IO ERROR", "needs about 20 steps", "maxSteps 19", "acoustic"}
+    );
+    setControl("maxSteps", "20");
+    runExpectingSuccess();
+    for (const std::string bad : {"0", "-5", "0.5"})
+    {
+        SCOPED_TRACE(bad);
+        setControl("maxSteps", bad);
+        text = runExpectingFatalError();
+        expectInLog(text, {"FATAL", "maxSteps"});
+    }
+}
+
+
 TEST_F(Solver, probeOutsideTheMeshStopsBeforeTheFirstStep)
 {
     // It used to write NaN on every line without a word

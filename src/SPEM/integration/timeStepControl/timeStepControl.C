@@ -26,7 +26,7 @@ void Foam::timeStepControl::checkControlDict() const
             "functions", "libs", "profiling", "cacheTemporaryObjects",
             "fileHandler", "DebugSwitches", "InfoSwitches",
             "OptimisationSwitches", "DimensionSets", "DimensionedConstants",
-            "Tolerances", "logInterval"
+            "Tolerances", "logInterval", "maxSteps"
         }
     );
 
@@ -132,10 +132,18 @@ Foam::timeStepControl::timeStepControl(Time& runTime)
     ),
     startTime_(runTime.startTime().value()),
     stableDeltaT_(GREAT),
-    wallStart_(std::chrono::steady_clock::now())
+    wallStart_(std::chrono::steady_clock::now()),
+    maxSteps_(runTime.controlDict().getOrDefault<scalar>("maxSteps", 1e7))
 {
     checkControlDict();
     const dictionary& controls = runTime.controlDict();
+    if (!(maxSteps_ >= 1) || !std::isfinite(maxSteps_))
+    {
+        FatalIOErrorInFunction(controls)
+            << "maxSteps " << maxSteps_ << " in " << controls.name()
+            << " must be a finite count of at least 1 (default 1e7)"
+            << exit(FatalIOError);
+    }
     if (!(maxCo_ > 0) || logInterval_ < 1)
     {
         FatalIOErrorInFunction(controls)
@@ -169,22 +177,93 @@ void Foam::timeStepControl::check(const scalar stable) const
 }
 
 
-void Foam::timeStepControl::reportStart
-(
-    Ostream& os,
-    const scalar stable
-) const
+Foam::scalar Foam::timeStepControl::stepFor(const scalar stable) const
 {
-    const scalar dt =
+    return
         adjustTimeStep_
       ? min(maxCo_*stable, maxDeltaT_)
       : runTime_.deltaTValue();
+}
+
+
+Foam::scalar Foam::timeStepControl::projectedSteps(const scalar dt) const
+{
     const scalar remaining = runTime_.endTime().value() - runTime_.value();
-    os  << "Time step: stable " << stable << " s at Courant number 1; "
-        << (adjustTimeStep_ ? "adjusted to " : "fixed ") << dt << " s"
-        << " (Courant number " << dt/stable << "); about "
-        << label(std::ceil(remaining/dt*(1 - 1e-12))) << " steps to endTime "
-        << runTime_.endTime().value() << nl << endl;
+    return
+        scalar(runTime_.timeIndex() - runTime_.startTimeIndex())
+      + std::ceil(remaining/dt*(1 - 1e-12));
+}
+
+
+Foam::scalar Foam::timeStepControl::wallTime() const
+{
+    return
+        std::chrono::duration<scalar>
+        (
+            std::chrono::steady_clock::now() - wallStart_
+        ).count();
+}
+
+
+void Foam::timeStepControl::reportStart
+(
+    Ostream& os,
+    const scalar stable,
+    const std::string& limit
+) const
+{
+    const scalar dt = stepFor(stable);
+    const scalar remaining = runTime_.endTime().value() - runTime_.value();
+    os  << "Time step: stable " << stable << " s at Courant number 1, set by "
+        << limit.c_str() << nl
+        << "    " << (adjustTimeStep_ ? "adjusted to " : "fixed ") << dt
+        << " s (Courant number " << dt/stable << "); about "
+        << std::ceil(remaining/dt*(1 - 1e-12)) << " steps to endTime "
+        << runTime_.endTime().value() << " (maxSteps " << maxSteps_ << ")"
+        << nl << "    wall time: estimated after the first "
+        << wallEstimateSteps << " steps" << nl << endl;
+}
+
+
+bool Foam::timeStepControl::withinMaxSteps(const scalar stable) const
+{
+    return projectedSteps(stepFor(stable)) <= maxSteps_;
+}
+
+
+void Foam::timeStepControl::stopAtMaxSteps
+(
+    const scalar stable,
+    const std::string& limit
+) const
+{
+    const scalar dt = stepFor(stable);
+    const label taken = runTime_.timeIndex() - runTime_.startTimeIndex();
+    FatalIOErrorInFunction(runTime_.controlDict())
+        << "At time " << runTime_.timeName() << " (" << taken
+        << " steps taken) the step is " << dt << " s (stable " << stable
+        << " s at Courant number 1), set by " << limit.c_str() << nl
+        << "    endTime " << runTime_.endTime().value() << " needs about "
+        << projectedSteps(dt) << " steps, more than maxSteps " << maxSteps_
+        << " of " << runTime_.controlDict().name() << nl
+        << "    Check the entries named above, or raise maxSteps if the run"
+        << " is meant to take that many steps." << exit(FatalIOError);
+    std::abort();
+}
+
+
+void Foam::timeStepControl::reportWallEstimate(Ostream& os) const
+{
+    const label taken = runTime_.timeIndex() - runTime_.startTimeIndex();
+    if (taken != wallEstimateSteps) return;
+    const scalar wall = wallTime();
+    const scalar span = runTime_.endTime().value() - startTime_;
+    const scalar done = span > 0 ? (runTime_.value() - startTime_)/span : 1;
+    os  << "Wall time: about "
+        << (done > 0 ? std::round(wall*(1 - done)/done) : 0)
+        << " s to endTime (from the first " << taken << " steps, "
+        << std::round(10*taken/max(wall, SMALL))/10 << " steps/s)" << nl
+        << endl;
 }
 
 
@@ -192,11 +271,7 @@ void Foam::timeStepControl::reportProgress(Ostream& os) const
 {
     const scalar span = runTime_.endTime().value() - startTime_;
     const scalar done = span > 0 ? (runTime_.value() - startTime_)/span : 1;
-    const scalar wall =
-        std::chrono::duration<scalar>
-        (
-            std::chrono::steady_clock::now() - wallStart_
-        ).count();
+    const scalar wall = wallTime();
     const label steps = runTime_.timeIndex() - runTime_.startTimeIndex();
     os  << "Progress: " << std::round(1000*done)/10 << " % of endTime, "
         << (wall > 0 ? std::round(10*steps/wall)/10 : 0) << " steps/s, ETA "
