@@ -54,6 +54,7 @@ Description
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
+#include <functional>
 #include <initializer_list>
 #include <limits>
 #include <regex>
@@ -784,6 +785,104 @@ TEST_F(Solver, misspeltMaterialKeywordStopsNamingKeywordAndFile)
 }
 
 
+TEST_F(Solver, finiteButAbsurdPhysicalValueStopsNamingEntryAndFile)
+{
+    // Each a FatalIOError naming the file and the entry, with the allowed
+    // range; c 1e200 and g 1e200 stopped with SIGFPE (c^2 rho and |g|
+    // overflowed), the others ran on numbers no material has
+    struct badInput
+    {
+        std::string what, keyword, file;
+        std::function<void()> apply;
+    };
+    const std::string solid =
+        "    water\n    {\n        model   linearElastic;\n"
+        "        rho     1000;\n        E       1e200;\n"
+        "        nu      0.3;\n    }\n";
+    const std::vector<badInput> inputs
+    {
+        {"c 1e200", "'c'", "constant/spemProperties",
+         [this]() { edit(regions_, "c       20;", "c       1e200;"); }},
+        {"c 1e200 (SPH)", "'c'", "constant/spemProperties",
+         [this]()
+         {
+             edit(regions_, "c       20;", "c       1e200;");
+             useSPH();
+         }},
+        {"rho 1e200", "'rho'", "constant/spemProperties",
+         [this]() { edit(regions_, "rho     1000;", "rho     1e200;"); }},
+        {"mu 1e20", "'mu'", "constant/spemProperties",
+         [this]() { edit(regions_, "mu      1e-3;", "mu      1e20;"); }},
+        {"mu -1", "'mu'", "constant/spemProperties",
+         [this]() { edit(regions_, "mu      1e-3;", "mu      -1;"); }},
+        {"E 1e200", "'E'", "constant/spemProperties",
+         [this, solid]() { regions_ = solid; }},
+        {"g 1e200", "'value'", "constant/g",
+         [this]() { edit(g_, "(0 -9.81 0)", "(0 -1e200 0)"); }},
+        {"g 1e5", "'value'", "constant/g",
+         [this]() { edit(g_, "(0 -9.81 0)", "(0 -1e5 0)"); }},
+        {"massProportional 1e200", "'massProportional'",
+         "constant/spemProperties",
+         [this]() { damping_ = "    massProportional 1e200;\n"; }},
+        {"maxCo 1e200", "'maxCo'", "system/controlDict",
+         [this]() { setControl("maxCo", "1e200"); }},
+        {"body mass 1e200", "'mass'", "constant/rigidBodyProperties",
+         [this]()
+         {
+             rigidBodies_ = floatBody(1);
+             edit(rigidBodies_, "mass ", "mass 1e200; //");
+         }},
+        {"body radius 1e200", "'radius'", "constant/rigidBodyProperties",
+         [this]()
+         {
+             rigidBodies_ = floatBody(1);
+             edit(rigidBodies_, "radius ", "radius 1e200; //");
+         }},
+        {"body centre 1e200", "'centre'", "constant/rigidBodyProperties",
+         [this]()
+         {
+             rigidBodies_ = floatBody(1);
+             edit(rigidBodies_, "centre (", "centre (1e200 0.6 0); //");
+         }}
+    };
+    const auto regions = regions_, g = g_, damping = damping_;
+    const auto bodies = rigidBodies_, schemes = schemes_;
+    const auto controls = controls_;
+    for (const badInput& in : inputs)
+    {
+        SCOPED_TRACE(in.what);
+        in.apply();
+        const std::string text = runExpectingFatalError();
+        expectInLog
+        (
+            text, {"FATAL IO ERROR", in.keyword, in.file, "Allowed: "}
+        );
+        EXPECT_FALSE(contains(text, "sigFpe")) << text;
+        regions_ = regions;
+        g_ = g;
+        damping_ = damping;
+        rigidBodies_ = bodies;
+        controls_ = controls;
+        schemes_ = schemes;
+    }
+}
+
+
+TEST_F(Solver, soundSpeedBelowTheFreeFallSpeedStopsNamingC)
+{
+    // Free fall over the 1 m column: sqrt(2 g H) = 4.43 m/s; c 4 m/s
+    // would make the weakly compressible water supersonic
+    edit(regions_, "c       20;", "c       4;");
+    const std::string text = runExpectingFatalError();
+    expectInLog
+    (
+        text,
+        {"FATAL IO ERROR", "Entry 'c' of region water", "4.4", "constant/g",
+         "Mach > 1", "constant/spemProperties"}
+    );
+}
+
+
 TEST_F(Solver, badSolidHypothesisStopsNamingKeywordAndFile)
 {
     regions_ =
@@ -1358,6 +1457,57 @@ TEST_F(SolverDamagedRestart, nonPositiveDensityStopsNamingTheFile)
         }
     );
     expectInLog(text, {"FATAL ERROR", "particleRho", "not positive"});
+}
+
+
+//- Replace the first value of a list file (a scalar or, for a vector
+//  list, both components in the plane) by value
+void replaceFirstValue(const fs::path& file, const std::string& value)
+{
+    std::string body = readText(file);
+    // The first value of the list: the line after the count
+    const std::size_t open = body.find("\n(\n");
+    ASSERT_NE(open, std::string::npos) << body;
+    const std::size_t end = body.find('\n', open + 3);
+    const bool vector = body[open + 3] == '(';
+    body.replace
+    (
+        open + 3, end - open - 3,
+        vector ? "(" + value + ' ' + value + " 0)" : value
+    );
+    std::ofstream(file, std::ios::trunc) << body;
+}
+
+
+TEST_F(SolverDamagedRestart, finiteButAbsurdStateValueStopsNamingTheFile)
+{
+    // 1e300 is finite: it passed the checks and stopped the first step
+    // with SIGFPE. Elements (method SPEM) and particles (SPH); each value
+    // breaks one bound of a sane state (restartState)
+    const std::vector<std::pair<std::string, std::string>> damages
+    {
+        {"points", "box"}, {"U", "Mach < 1"},
+        {"particlePositions", "box"}, {"particleU", "Mach < 1"},
+        {"particleRho", "factor of 2"}, {"particleRhoOld", "factor of 2"},
+        {"particleMass", "rho0 times the area"},
+        {"particleH", "diagonal"}
+    };
+    for (const auto& [file, why] : damages)
+    {
+        SCOPED_TRACE(file);
+        // restartAfter() ran the last case on to 0.04
+        setControl("endTime", "0.02");
+        schemes_ = "method          SPEM;\n";
+        if (file.compare(0, 8, "particle") == 0) useSPH();
+        const std::string text = restartAfter
+        (
+            [&, file = file](const fs::path& t)
+            {
+                replaceFirstValue(t/"spem"/file, "1e300");
+            }
+        );
+        expectInLog(text, {"FATAL ERROR", "0.02/spem/" + file, "entry 0", why});
+    }
 }
 
 

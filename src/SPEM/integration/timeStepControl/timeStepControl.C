@@ -1,10 +1,29 @@
 #include "timeStepControl.H"
 #include "checkKeywords.H"
+#include "saneRanges.H"
 #include "functionObject.H"
 #include "IFstream.H"
 
 #include <algorithm>
 #include <cmath>
+
+namespace
+{
+    //- maxCo: positive; above 1 the scheme is unstable (a warning, and
+    //  the blow-up tests use 20 on purpose), above 100 a step crosses a
+    //  hundred elements: a typing error
+    constexpr Foam::valueRange maxCoRange
+    {
+        0, 100, "", "positive; unstable above 1, absurd above 100", true
+    };
+
+    //- maxDeltaT: a positive step
+    constexpr Foam::valueRange maxDeltaTRange
+    {
+        0, Foam::GREAT, "s", "a positive step", true
+    };
+}
+
 
 // * * * * * * * * * * * * * Private Member Functions  * * * * * * * * * * * //
 
@@ -113,8 +132,17 @@ Foam::timeStepControl::timeStepControl(Time& runTime)
     (
         runTime.controlDict().getOrDefault<Switch>("adjustTimeStep", false)
     ),
-    maxCo_(runTime.controlDict().getOrDefault<scalar>("maxCo", 0.9)),
-    maxDeltaT_(runTime.controlDict().getOrDefault<scalar>("maxDeltaT", GREAT)),
+    maxCo_
+    (
+        getCheckedOrDefault(runTime.controlDict(), "maxCo", 0.9, maxCoRange)
+    ),
+    maxDeltaT_
+    (
+        getCheckedOrDefault
+        (
+            runTime.controlDict(), "maxDeltaT", GREAT, maxDeltaTRange
+        )
+    ),
     logInterval_(runTime.controlDict().getOrDefault<label>("logInterval", 100)),
     landOnWriteTimes_
     (

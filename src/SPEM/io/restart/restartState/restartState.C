@@ -13,6 +13,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <sstream>
 
 namespace
 {
@@ -120,6 +121,79 @@ void Foam::restartState::checkValues
         if (mustBePositive && !isPositive(f[i]))
         {
             bad(io, "entry " + std::to_string(i) + " is not positive");
+        }
+    }
+}
+
+
+void Foam::restartState::checkPositions
+(
+    const IOobject& io,
+    const vectorField& x
+) const
+{
+    const bounds& b = bounds_;
+    forAll(x, i)
+    {
+        if
+        (
+            x[i].x() < b.boxMin[0] || x[i].x() > b.boxMax[0]
+         || x[i].y() < b.boxMin[1] || x[i].y() > b.boxMax[1]
+        )
+        {
+            std::ostringstream os;
+            os  << "entry " << i << ", position (" << x[i].x() << ' '
+                << x[i].y() << "), is outside the box [(" << b.boxMin[0]
+                << ' ' << b.boxMin[1] << "), (" << b.boxMax[0] << ' '
+                << b.boxMax[1] << ")] of the mesh enlarged by"
+                << " lostParticleDistance, where a particle counts as lost";
+            bad(io, os.str());
+        }
+    }
+}
+
+
+void Foam::restartState::checkSpeeds
+(
+    const IOobject& io,
+    const vectorField& v
+) const
+{
+    forAll(v, i)
+    {
+        // Scaled: a component of 1e300 must not overflow its square
+        const scalar s = max(mag(v[i].x()), mag(v[i].y()));
+        const scalar speed =
+            s > 0 ? s*std::sqrt(sqr(v[i].x()/s) + sqr(v[i].y()/s)) : 0;
+        if (!(speed < bounds_.maxSpeed))
+        {
+            std::ostringstream os;
+            os  << "entry " << i << ", speed " << speed << " m/s, is not below"
+                << " the fastest wave speed of the case, "
+                << bounds_.maxSpeed << " m/s (Mach < 1)";
+            bad(io, os.str());
+        }
+    }
+}
+
+
+void Foam::restartState::checkBetween
+(
+    const IOobject& io,
+    const scalarField& f,
+    const scalar lower,
+    const scalar upper,
+    const std::string& why
+) const
+{
+    forAll(f, i)
+    {
+        if (!(f[i] >= lower && f[i] <= upper))
+        {
+            std::ostringstream os;
+            os  << "entry " << i << ", " << f[i] << ", is outside ["
+                << lower << ", " << upper << "]: " << why;
+            bad(io, os.str());
         }
     }
 }
@@ -372,6 +446,8 @@ bool Foam::restartState::readElements(elementModel& elements) const
     }
     checkValues(xIO, xf);
     checkValues(vIO, vf);
+    checkPositions(xIO, xf);
+    checkSpeeds(vIO, vf);
     std::vector<scalar> x(2*xf.size()), v(2*vf.size());
     forAll(xf, i)
     {
@@ -436,6 +512,29 @@ bool Foam::restartState::readParticles
     checkValues(old, old, true);
     checkValues(m, m, true);
     checkValues(h, h, true);
+    checkPositions(xIO, xf);
+    checkSpeeds(vf, vf);
+    const bounds& b = bounds_;
+    if (b.rho0 > 0)
+    {
+        const std::string why =
+            "a density beyond a factor of 2 from rho0 would take a flow at"
+            " Mach ~1 to make";
+        checkBetween(rho, rho, 0.5*b.rho0, 2*b.rho0, why);
+        checkBetween(old, old, 0.5*b.rho0, 2*b.rho0, why);
+        const scalar dx = b.boxMax[0] - b.boxMin[0];
+        const scalar dy = b.boxMax[1] - b.boxMin[1];
+        checkBetween
+        (
+            m, m, 0, 2*b.rho0*dx*dy,
+            "more than 2 rho0 times the area of the box of the positions"
+        );
+        checkBetween
+        (
+            h, h, 0, std::sqrt(dx*dx + dy*dy),
+            "larger than the diagonal of the box of the positions"
+        );
+    }
 
     particles.reserve(n);
     forAll(xf, i)
@@ -602,9 +701,15 @@ Foam::scalar Foam::restartState::readPreviousDeltaT() const
         bad(io, "missing: the state has no step history");
     }
     const scalar dt = IOdictionary(io).get<scalar>("previousDeltaT");
-    if (!(std::isfinite(dt) && dt >= 0))
+    // The steps before the state sum to its time: none is longer
+    if (!(std::isfinite(dt) && dt >= 0 && dt <= runTime_.value()*(1 + 1e-9)))
     {
-        bad(io, "previousDeltaT is not a finite non-negative step");
+        bad
+        (
+            io,
+            "previousDeltaT is not a step of the run: not finite, negative"
+            " or longer than the time of the state"
+        );
     }
     return dt;
 }
