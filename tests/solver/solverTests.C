@@ -1548,6 +1548,26 @@ TEST_F(Solver, logNamesWhatSetsTheStepAndEstimatesTheWallTime)
 }
 
 
+TEST_F(Solver, logNamesTheWaveSpeedLimitOfASolid)
+{
+    // The column as a soft solid: c_p = sqrt(E (1 - nu)/(rho (1 + nu)
+    // (1 - 2 nu))) = 37 m/s sets the step
+    regions_ =
+        "    water\n    {\n        model   linearElastic;\n"
+        "        rho     1000;\n        E       1e6;\n"
+        "        nu      0.3;\n    }\n";
+    setControl("deltaT", "2e-4");
+    setControl("endTime", "0.004");
+    const std::string text = runExpectingSuccess();
+    expectInLog
+    (
+        text,
+        {"set by the solid wave speed limit of the elements of region water",
+         "(entries E, nu, rho)"}
+    );
+}
+
+
 TEST_F(Solver, absurdViscosityStopsAtMaxStepsNamingTheViscousLimit)
 {
     // mu 1e10 Pa s: the explicit viscous limit 0.25 h^2 rho/mu is about
@@ -1593,6 +1613,48 @@ TEST_F(Solver, runPastMaxStepsStopsAndNonPositiveMaxStepsIsRefused)
         text = runExpectingFatalError();
         expectInLog(text, {"FATAL", "maxSteps"});
     }
+}
+
+
+TEST_F(Solver, stepThatFallsDuringTheRunStopsAtMaxStepsThere)
+{
+    // Particles with adjusted steps: the step h/(c + |v|) falls as the
+    // column starts to move, so the run takes more steps than the start
+    // line foresees. With maxSteps at that forecast the start passes and
+    // the run stops where the steps taken and those left pass it
+    useSPH();
+    setControl("adjustTimeStep", "yes");
+    setControl("endTime", "1");
+    setControl("writeInterval", "100000");
+    setControl("logInterval", "1");
+    const std::string first = runExpectingSuccess();
+    std::smatch m;
+    ASSERT_TRUE
+    (
+        std::regex_search(first, m, std::regex("about ([0-9]+) steps to endTime"))
+    ) << first;
+    const long forecast = std::stol(m[1].str());
+    long taken = 0;
+    const std::regex step(", step ([0-9]+)\n");
+    for (auto it = std::sregex_iterator(first.begin(), first.end(), step);
+         it != std::sregex_iterator(); ++it)
+    {
+        taken = std::stol((*it)[1].str());
+    }
+    std::cout << "forecast " << forecast << " steps, taken " << taken
+        << std::endl;
+    ASSERT_GT(taken, forecast) << "the step did not fall: no test";
+
+    setControl("maxSteps", std::to_string(forecast));
+    const std::string text = runExpectingFatalError();
+    expectInLog
+    (
+        text,
+        {"Starting time loop", "FATAL IO ERROR", "steps taken) the step is",
+         "set by the acoustic limit of the fluid particles",
+         "more than maxSteps " + std::to_string(forecast)}
+    );
+    EXPECT_FALSE(contains(text, "(0 steps taken)")) << text;
 }
 
 

@@ -51,6 +51,12 @@ void Foam::timeStepControl::checkControlDict() const
 
     const scalar start = runTime_.startTime().value();
     const scalar end = runTime_.endTime().value();
+    if (!std::isfinite(end))
+    {
+        FatalIOErrorInFunction(controls)
+            << "endTime " << end << " in " << controls.name()
+            << " is not finite" << exit(FatalIOError);
+    }
     if (end < start)
     {
         FatalIOErrorInFunction(controls)
@@ -161,7 +167,8 @@ Foam::timeStepControl::timeStepControl(Time& runTime)
     startTime_(runTime.startTime().value()),
     stableDeltaT_(GREAT),
     wallStart_(std::chrono::steady_clock::now()),
-    maxSteps_(runTime.controlDict().getOrDefault<scalar>("maxSteps", 1e7))
+    maxSteps_(runTime.controlDict().getOrDefault<scalar>("maxSteps", 1e7)),
+    loopStart_(wallStart_)
 {
     checkControlDict();
     const dictionary& controls = runTime.controlDict();
@@ -238,8 +245,9 @@ void Foam::timeStepControl::reportStart
     Ostream& os,
     const scalar stable,
     const std::string& limit
-) const
+)
 {
+    loopStart_ = std::chrono::steady_clock::now();
     const scalar dt = stepFor(stable);
     const scalar remaining = runTime_.endTime().value() - runTime_.value();
     os  << "Time step: stable " << stable << " s at Courant number 1, set by "
@@ -284,7 +292,11 @@ void Foam::timeStepControl::reportWallEstimate(Ostream& os) const
 {
     const label taken = runTime_.timeIndex() - runTime_.startTimeIndex();
     if (taken != wallEstimateSteps) return;
-    const scalar wall = wallTime();
+    const scalar wall =
+        std::chrono::duration<scalar>
+        (
+            std::chrono::steady_clock::now() - loopStart_
+        ).count();
     const scalar span = runTime_.endTime().value() - startTime_;
     const scalar done = span > 0 ? (runTime_.value() - startTime_)/span : 1;
     os  << "Wall time: about "
