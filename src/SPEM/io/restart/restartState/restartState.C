@@ -634,6 +634,7 @@ void Foam::restartState::readAcceleration
     }
     checkValues(uIO, U);
     checkValues(aIO, A);
+    checkSpeeds(uIO, U);
     std::vector<scalar> u(2*U.size()), a(2*A.size());
     forAll(U, k)
     {
