@@ -54,6 +54,7 @@ Description
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
+#include <functional>
 #include <initializer_list>
 #include <limits>
 #include <regex>
@@ -784,6 +785,104 @@ TEST_F(Solver, misspeltMaterialKeywordStopsNamingKeywordAndFile)
 }
 
 
+TEST_F(Solver, finiteButAbsurdPhysicalValueStopsNamingEntryAndFile)
+{
+    // Each a FatalIOError naming the file and the entry, with the allowed
+    // range; c 1e200 and g 1e200 stopped with SIGFPE (c^2 rho and |g|
+    // overflowed), the others ran on numbers no material has
+    struct badInput
+    {
+        std::string what, keyword, file;
+        std::function<void()> apply;
+    };
+    const std::string solid =
+        "    water\n    {\n        model   linearElastic;\n"
+        "        rho     1000;\n        E       1e200;\n"
+        "        nu      0.3;\n    }\n";
+    const std::vector<badInput> inputs
+    {
+        {"c 1e200", "'c'", "constant/spemProperties",
+         [this]() { edit(regions_, "c       20;", "c       1e200;"); }},
+        {"c 1e200 (SPH)", "'c'", "constant/spemProperties",
+         [this]()
+         {
+             edit(regions_, "c       20;", "c       1e200;");
+             useSPH();
+         }},
+        {"rho 1e200", "'rho'", "constant/spemProperties",
+         [this]() { edit(regions_, "rho     1000;", "rho     1e200;"); }},
+        {"mu 1e20", "'mu'", "constant/spemProperties",
+         [this]() { edit(regions_, "mu      1e-3;", "mu      1e20;"); }},
+        {"mu -1", "'mu'", "constant/spemProperties",
+         [this]() { edit(regions_, "mu      1e-3;", "mu      -1;"); }},
+        {"E 1e200", "'E'", "constant/spemProperties",
+         [this, solid]() { regions_ = solid; }},
+        {"g 1e200", "'value'", "constant/g",
+         [this]() { edit(g_, "(0 -9.81 0)", "(0 -1e200 0)"); }},
+        {"g 1e5", "'value'", "constant/g",
+         [this]() { edit(g_, "(0 -9.81 0)", "(0 -1e5 0)"); }},
+        {"massProportional 1e200", "'massProportional'",
+         "constant/spemProperties",
+         [this]() { damping_ = "    massProportional 1e200;\n"; }},
+        {"maxCo 1e200", "'maxCo'", "system/controlDict",
+         [this]() { setControl("maxCo", "1e200"); }},
+        {"body mass 1e200", "'mass'", "constant/rigidBodyProperties",
+         [this]()
+         {
+             rigidBodies_ = floatBody(1);
+             edit(rigidBodies_, "mass ", "mass 1e200; //");
+         }},
+        {"body radius 1e200", "'radius'", "constant/rigidBodyProperties",
+         [this]()
+         {
+             rigidBodies_ = floatBody(1);
+             edit(rigidBodies_, "radius ", "radius 1e200; //");
+         }},
+        {"body centre 1e200", "'centre'", "constant/rigidBodyProperties",
+         [this]()
+         {
+             rigidBodies_ = floatBody(1);
+             edit(rigidBodies_, "centre (", "centre (1e200 0.6 0); //");
+         }}
+    };
+    const auto regions = regions_, g = g_, damping = damping_;
+    const auto bodies = rigidBodies_, schemes = schemes_;
+    const auto controls = controls_;
+    for (const badInput& in : inputs)
+    {
+        SCOPED_TRACE(in.what);
+        in.apply();
+        const std::string text = runExpectingFatalError();
+        expectInLog
+        (
+            text, {"FATAL IO ERROR", in.keyword, in.file, "Allowed: "}
+        );
+        EXPECT_FALSE(contains(text, "sigFpe")) << text;
+        regions_ = regions;
+        g_ = g;
+        damping_ = damping;
+        rigidBodies_ = bodies;
+        controls_ = controls;
+        schemes_ = schemes;
+    }
+}
+
+
+TEST_F(Solver, soundSpeedBelowTheFreeFallSpeedStopsNamingC)
+{
+    // Free fall over the 1 m column: sqrt(2 g H) = 4.43 m/s; c 4 m/s
+    // would make the weakly compressible water supersonic
+    edit(regions_, "c       20;", "c       4;");
+    const std::string text = runExpectingFatalError();
+    expectInLog
+    (
+        text,
+        {"FATAL IO ERROR", "Entry 'c' of region water", "4.4", "constant/g",
+         "Mach > 1", "constant/spemProperties"}
+    );
+}
+
+
 TEST_F(Solver, badSolidHypothesisStopsNamingKeywordAndFile)
 {
     regions_ =
@@ -1176,6 +1275,110 @@ TEST_F(SolverRestart, everyWrittenStateListsItsFilesAndNoPartialFolderIsLeft)
 }
 
 
+//- Every file of <time>/spem of case A is in B's, with the same bytes;
+//  the number of files that differ (0: bit for bit)
+int differingStateFiles
+(
+    const fs::path& caseA,
+    const fs::path& caseB,
+    const std::string& time
+)
+{
+    int nDiffer = 0;
+    for (const fs::directory_entry& f : fs::directory_iterator(caseA/time/"spem"))
+    {
+        const fs::path other = caseB/time/"spem"/f.path().filename();
+        const bool same =
+            fs::exists(other) && readText(f.path()) == readText(other);
+        if (!same)
+        {
+            ++nDiffer;
+            std::cout << "differs: " << other << std::endl;
+        }
+    }
+    return nDiffer;
+}
+
+
+TEST_F(SolverRestart, sphRestartContinuesBitForBit)
+{
+    // A: continuously to 2T; B: to T, then on to 2T from its latest time.
+    // T = 150 steps of 0.4 ms, not a multiple of the 20 steps between two
+    // sorts by cell: the restart must store the particles in the order the
+    // running process had and sort at its steps (the neighbour sums run in
+    // storage order; before, the restart differed by 1e-15 relative)
+    useSPH();
+    const std::string T = "0.06", twoT = "0.12";
+    setControl("writeInterval", "50");
+    fs::path caseA, caseB;
+    runContinuousAndRestarted
+    (
+        T, twoT,
+        [](const fs::path&) { return std::vector<std::string>(); },
+        caseA, caseB
+    );
+    if (HasFailure()) return;
+    EXPECT_TRUE(fs::exists(caseB/T/"spem"/"particleOrder"));
+    EXPECT_EQ(differingStateFiles(caseA, caseB, twoT), 0);
+    const double xError = relativeDifference
+    (
+        readState(twoT, "particlePositions", caseA),
+        readState(twoT, "particlePositions", caseB)
+    );
+    std::cout << "SPH restart: positions differ by " << xError
+        << " relative" << std::endl;
+    EXPECT_EQ(xError, 0);
+}
+
+
+TEST_F(SolverRestart, spemRestartAfterConversionsWithAdjustedStepsIsBitForBit)
+{
+    // Method SPEM, a heavy cylinder sinking in the column: its elements
+    // distort and convert from about 0.07 s on, so the state at T holds
+    // elements, particles and the interface. The steps are adjusted and
+    // land on the write times (writeControl adjustableRunTime): the
+    // landing must be computed as the continuous run computes it (before,
+    // from the restart's start time, the steps differed at round-off)
+    const std::string T = "0.08", twoT = "0.12";
+    nx_ = 20;
+    ny_ = 40;
+    setControl("adjustTimeStep", "yes");
+    setControl("maxCo", "0.5");
+    setControl("deltaT", "1e-4");
+    setControl("writeControl", "adjustableRunTime");
+    setControl("writeInterval", "0.04");
+    rigidBodies_ = floatBody(3);
+    fs::path caseA, caseB;
+    runContinuousAndRestarted
+    (
+        T, twoT,
+        [](const fs::path&)
+        {
+            return std::vector<std::string>{"Restart: read", "fluid particles"};
+        },
+        caseA, caseB
+    );
+    if (HasFailure()) return;
+    EXPECT_TRUE(fs::exists(caseB/T/"spem"/"convertedTriangles"));
+    EXPECT_TRUE(contains(log(), "Conversion at time"));
+    EXPECT_EQ(differingStateFiles(caseA, caseB, twoT), 0);
+    const double xError = relativeDifference
+    (
+        readState(twoT, "points", caseA), readState(twoT, "points", caseB)
+    );
+    const double pError = relativeDifference
+    (
+        readState(twoT, "particlePositions", caseA),
+        readState(twoT, "particlePositions", caseB)
+    );
+    std::cout << "SPEM restart after conversions: points differ by "
+        << xError << ", particle positions by " << pError << " relative"
+        << std::endl;
+    EXPECT_EQ(xError, 0);
+    EXPECT_EQ(pError, 0);
+}
+
+
 //- Fixture: a state written to T, damaged, and a run on from it
 class SolverDamagedRestart : public SolverRestart
 {
@@ -1257,6 +1460,57 @@ TEST_F(SolverDamagedRestart, nonPositiveDensityStopsNamingTheFile)
 }
 
 
+//- Replace the first value of a list file (a scalar or, for a vector
+//  list, both components in the plane) by value
+void replaceFirstValue(const fs::path& file, const std::string& value)
+{
+    std::string body = readText(file);
+    // The first value of the list: the line after the count
+    const std::size_t open = body.find("\n(\n");
+    ASSERT_NE(open, std::string::npos) << body;
+    const std::size_t end = body.find('\n', open + 3);
+    const bool vector = body[open + 3] == '(';
+    body.replace
+    (
+        open + 3, end - open - 3,
+        vector ? "(" + value + ' ' + value + " 0)" : value
+    );
+    std::ofstream(file, std::ios::trunc) << body;
+}
+
+
+TEST_F(SolverDamagedRestart, finiteButAbsurdStateValueStopsNamingTheFile)
+{
+    // 1e300 is finite: it passed the checks and stopped the first step
+    // with SIGFPE. Elements (method SPEM) and particles (SPH); each value
+    // breaks one bound of a sane state (restartState)
+    const std::vector<std::pair<std::string, std::string>> damages
+    {
+        {"points", "box"}, {"U", "Mach < 1"},
+        {"particlePositions", "box"}, {"particleU", "Mach < 1"},
+        {"particleRho", "factor of 2"}, {"particleRhoOld", "factor of 2"},
+        {"particleMass", "rho0 times the area"},
+        {"particleH", "diagonal"}
+    };
+    for (const auto& [file, why] : damages)
+    {
+        SCOPED_TRACE(file);
+        // restartAfter() ran the last case on to 0.04
+        setControl("endTime", "0.02");
+        schemes_ = "method          SPEM;\n";
+        if (file.compare(0, 8, "particle") == 0) useSPH();
+        const std::string text = restartAfter
+        (
+            [&, file = file](const fs::path& t)
+            {
+                replaceFirstValue(t/"spem"/file, "1e300");
+            }
+        );
+        expectInLog(text, {"FATAL ERROR", "0.02/spem/" + file, "entry 0", why});
+    }
+}
+
+
 // * * * * * * * * * * * * * * * * controlDict * * * * * * * * * * * * * * * //
 
 TEST_F(Solver, logGivesTheStepCountToEndTimeAndTheProgress)
@@ -1272,6 +1526,135 @@ TEST_F(Solver, logGivesTheStepCountToEndTimeAndTheProgress)
             "steps/s, ETA 0 s"
         }
     );
+}
+
+
+TEST_F(Solver, logNamesWhatSetsTheStepAndEstimatesTheWallTime)
+{
+    // The elements' acoustic limit h/c (c 20 m/s) is the smallest; the
+    // estimate comes after the first wallEstimateSteps = 20 steps (all of
+    // them here)
+    const std::string text = runExpectingSuccess();
+    expectInLog
+    (
+        text,
+        {
+            "set by the acoustic limit of the elements of region water",
+            "c 20 m/s (entry c)", "(maxSteps 10000000)",
+            "wall time: estimated after the first 20 steps",
+            "Wall time: about", "s to endTime (from the first 20 steps"
+        }
+    );
+}
+
+
+TEST_F(Solver, logNamesTheWaveSpeedLimitOfASolid)
+{
+    // The column as a soft solid: c_p = sqrt(E (1 - nu)/(rho (1 + nu)
+    // (1 - 2 nu))) = 37 m/s sets the step
+    regions_ =
+        "    water\n    {\n        model   linearElastic;\n"
+        "        rho     1000;\n        E       1e6;\n"
+        "        nu      0.3;\n    }\n";
+    setControl("deltaT", "2e-4");
+    setControl("endTime", "0.004");
+    const std::string text = runExpectingSuccess();
+    expectInLog
+    (
+        text,
+        {"set by the solid wave speed limit of the elements of region water",
+         "(entries E, nu, rho)"}
+    );
+}
+
+
+TEST_F(Solver, absurdViscosityStopsAtMaxStepsNamingTheViscousLimit)
+{
+    // mu 1e10 Pa s: the explicit viscous limit 0.25 h^2 rho/mu is about
+    // 1e-13 s, some 1e11 steps to 0.02 s; it used to run them in silence
+    for (const std::string method : {"SPEM", "SPH"})
+    {
+        SCOPED_TRACE(method);
+        schemes_ = "method          " + method + ";\n";
+        edit(regions_, "mu      1e-3;", "mu      1e10;");
+        setControl("adjustTimeStep", "yes");
+        const std::string text = runExpectingFatalError();
+        expectInLog
+        (
+            text,
+            {
+                "FATAL IO ERROR", "maxSteps 10000000", "controlDict",
+                "set by the viscous limit of the ",
+                method == "SPH" ? "fluid particles" : "region water",
+                "mu 1e+10 Pa s", "(entries mu, rho)"
+            }
+        );
+        EXPECT_FALSE(contains(text, "Starting time loop")) << text;
+        edit(regions_, "mu      1e10;", "mu      1e-3;");
+    }
+}
+
+
+TEST_F(Solver, runPastMaxStepsStopsAndNonPositiveMaxStepsIsRefused)
+{
+    // 20 steps of 1 ms to endTime 0.02
+    setControl("maxSteps", "19");
+    std::string text = runExpectingFatalError();
+    expectInLog
+    (
+        text, {"FATAL IO ERROR", "needs about 20 steps", "maxSteps 19", "acoustic"}
+    );
+    setControl("maxSteps", "20");
+    runExpectingSuccess();
+    for (const std::string bad : {"0", "-5", "0.5"})
+    {
+        SCOPED_TRACE(bad);
+        setControl("maxSteps", bad);
+        text = runExpectingFatalError();
+        expectInLog(text, {"FATAL", "maxSteps"});
+    }
+}
+
+
+TEST_F(Solver, stepThatFallsDuringTheRunStopsAtMaxStepsThere)
+{
+    // Particles with adjusted steps: the step h/(c + |v|) falls as the
+    // column starts to move, so the run takes more steps than the start
+    // line foresees. With maxSteps at that forecast the start passes and
+    // the run stops where the steps taken and those left pass it
+    useSPH();
+    setControl("adjustTimeStep", "yes");
+    setControl("endTime", "1");
+    setControl("writeInterval", "100000");
+    setControl("logInterval", "1");
+    const std::string first = runExpectingSuccess();
+    std::smatch m;
+    ASSERT_TRUE
+    (
+        std::regex_search(first, m, std::regex("about ([0-9]+) steps to endTime"))
+    ) << first;
+    const long forecast = std::stol(m[1].str());
+    long taken = 0;
+    const std::regex step(", step ([0-9]+)\n");
+    for (auto it = std::sregex_iterator(first.begin(), first.end(), step);
+         it != std::sregex_iterator(); ++it)
+    {
+        taken = std::stol((*it)[1].str());
+    }
+    std::cout << "forecast " << forecast << " steps, taken " << taken
+        << std::endl;
+    ASSERT_GT(taken, forecast) << "the step did not fall: no test";
+
+    setControl("maxSteps", std::to_string(forecast));
+    const std::string text = runExpectingFatalError();
+    expectInLog
+    (
+        text,
+        {"Starting time loop", "FATAL IO ERROR", "steps taken) the step is",
+         "set by the acoustic limit of the fluid particles",
+         "more than maxSteps " + std::to_string(forecast)}
+    );
+    EXPECT_FALSE(contains(text, "(0 steps taken)")) << text;
 }
 
 
@@ -1881,11 +2264,9 @@ TEST_F(Solver, sphRestartContinuesFromWrittenParticleState)
     std::cout << "SPH restart: relative difference of the final states:"
         << " positions " << xError << ", U " << UError << ", rho "
         << rhoError << std::endl;
-    // writePrecision 17: doubles survive the text round trip. The restart
-    // sorts the particles by cell at other steps, which changes only the
-    // order of the sums: round-off (measured 1e-14 for U with
-    // gradientCorrection none and shifting 0, the terms that need no
-    // state of the previous step)
+    // writePrecision 17: doubles survive the text round trip; the
+    // restart keeps the storage order of the particles, so this is bit for
+    // bit (SolverRestart.sphRestartContinuesBitForBit checks that)
     EXPECT_LE(xError, 1e-12);
     EXPECT_LE(UError, 1e-12);
     EXPECT_LE(rhoError, 1e-12);
@@ -1937,7 +2318,7 @@ TEST_F(Solver, spemRestartWithASlidingFreeBodyContinuesExactly)
     // to 2T; B: to T, then on to 2T from its latest time. 20 cells across
     // the column: 2.4 across the cylinder. At T the elements still slide
     // on it; by 2T they have distorted and become particles (a restart
-    // after conversions, SPEM's own, differs by about 1e-11)
+    // after conversions: SolverRestart.spemRestartAfterConversions...)
     const std::string T = "0.05", twoT = "0.1";
     nx_ = 20;
     ny_ = 40;

@@ -51,18 +51,32 @@ int main(int argc, char *argv[])
     model.evaluate();
     model.write(runTime.timeIndex() == 0);
     timeStep.check(model.stableDeltaT());
-    timeStep.reportStart(Info, model.stableDeltaT());
+    timeStep.reportStart(Info, model.stableDeltaT(), model.stableStepLimit());
+    if (!timeStep.withinMaxSteps(model.stableDeltaT()))
+    {
+        timeStep.stopAtMaxSteps(model.stableDeltaT(), model.stableStepLimit());
+    }
 
     Info<< "Starting time loop" << nl << endl;
 
     while (runTime.run())
     {
         timeStep.setDeltaT(model.stableDeltaT());
+        // The description is made only to stop: nothing is allocated in
+        // the loop
+        if (!timeStep.withinMaxSteps(model.stableDeltaT()))
+        {
+            timeStep.stopAtMaxSteps
+            (
+                model.stableDeltaT(), model.stableStepLimit()
+            );
+        }
         ++runTime;
 
         model.advance();
         model.evaluate();
         model.write();
+        timeStep.reportWallEstimate(Info);
 
         if (timeStep.logTime())
         {

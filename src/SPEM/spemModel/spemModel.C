@@ -2,6 +2,9 @@
 #include "Time.H"
 #include "uniformDimensionedFields.H"
 #include "checkKeywords.H"
+#include "saneRanges.H"
+#include "IFstream.H"
+#include "sphFluid.H"
 #include "vtkModelWriter.H"
 
 #include <sstream>
@@ -122,6 +125,12 @@ void Foam::spemModel::readGravity()
         Info<< "No constant/g: no gravity" << nl;
         return;
     }
+    // The value checked before anything squares it (1e200 overflowed in
+    // |g| and stopped with SIGFPE)
+    {
+        IFstream is(gIO.objectPath());
+        getCheckedVector(dictionary(is), "value", saneRange::gravity);
+    }
     const uniformDimensionedVectorField g(gIO);
     if (mag(g.value().z()) > SMALL*mag(g.value()))
     {
@@ -135,19 +144,85 @@ void Foam::spemModel::readGravity()
 }
 
 
+void Foam::spemModel::checkMachNumber
+(
+    const PtrList<spemMaterial>& materials
+) const
+{
+    const scalar gMag = std::sqrt(g_[0]*g_[0] + g_[1]*g_[1]);
+    if (!(gMag > 0)) return;
+    // The height of the mesh along g
+    const std::vector<scalar>& x = mesh_.points();
+    scalar lo = GREAT, hi = -GREAT;
+    for (label i = 0; i < mesh_.nPoints(); ++i)
+    {
+        const scalar s = (x[2*i]*g_[0] + x[2*i + 1]*g_[1])/gMag;
+        lo = min(lo, s);
+        hi = max(hi, s);
+    }
+    const scalar H = hi - lo;
+    const scalar freeFall = std::sqrt(2*gMag*H);
+    const dictionary& regionsDict = subDict("regions");
+    forAll(materials, r)
+    {
+        if (!materials.set(r) || !materials[r].isFluid()) continue;
+        const scalar c = materials[r].waveSpeed();
+        if (c > freeFall) continue;
+        FatalIOErrorInFunction(regionsDict.subDict(materials[r].name()))
+            << "Entry 'c' of region " << materials[r].name() << ": c " << c
+            << " m/s is not above the speed of a free fall over the height"
+            << " of the mesh, sqrt(2 |g| H) = " << freeFall << " m/s (|g| "
+            << gMag << " m/s2 of constant/g, H " << H << " m)." << nl
+            << "    The fluid would flow at Mach > 1, outside the weakly"
+            << " compressible model: c is usually 10 x the largest flow"
+            << " speed." << exit(FatalIOError);
+    }
+}
+
+
+Foam::restartState::bounds Foam::spemModel::restartBounds
+(
+    const PtrList<spemMaterial>& materials
+) const
+{
+    restartState::bounds b;
+    // A box no particle of a valid state reaches: the mesh enlarged by
+    // 1000 times its size on every side (the tank decides which particles
+    // are lost, and beyond an open patch it has no end; this only catches
+    // a corrupt number)
+    const scalar lost = 1000;
+    const std::vector<scalar>& x = mesh_.points();
+    for (int k = 0; k < 2; ++k)
+    {
+        scalar lo = GREAT, hi = -GREAT;
+        for (label i = 0; i < mesh_.nPoints(); ++i)
+        {
+            lo = min(lo, x[2*i + k]);
+            hi = max(hi, x[2*i + k]);
+        }
+        b.boxMin[k] = lo - lost*(hi - lo);
+        b.boxMax[k] = hi + lost*(hi - lo);
+    }
+    b.maxSpeed = 0;
+    forAll(materials, r)
+    {
+        if (!materials.set(r)) continue;
+        b.maxSpeed = max(b.maxSpeed, materials[r].waveSpeed());
+        if (materials[r].isFluid()) b.rho0 = materials[r].rho();
+    }
+    return b;
+}
+
+
 Foam::scalar Foam::spemModel::readDamping() const
 {
     const dictionary* dampingDict = findDict("damping");
     if (!dampingDict) return 0;
     checkKeywords(*dampingDict, {"massProportional"});
-    const scalar alpha =
-        dampingDict->getOrDefault<scalar>("massProportional", 0);
-    if (alpha < 0)
-    {
-        FatalIOErrorInFunction(*dampingDict)
-            << "massProportional must not be negative" << exit(FatalIOError);
-    }
-    return alpha;
+    return getCheckedOrDefault
+    (
+        *dampingDict, "massProportional", 0, saneRange::damping
+    );
 }
 
 
@@ -382,6 +457,8 @@ Foam::spemModel::spemModel(Time& runTime)
     const scalar damping = readDamping();
     readBoundaries();
     readGravity();
+    checkMachNumber(materials);
+    restart_.setBounds(restartBounds(materials));
 
     case_.reset
     (

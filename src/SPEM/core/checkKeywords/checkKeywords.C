@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cctype>
+#include <cmath>
 #include <string>
 #include <vector>
 
@@ -77,4 +78,75 @@ void Foam::checkKeywordSpelling(const dictionary& dict, const wordList& known)
             }
         }
     }
+}
+
+
+void Foam::outOfRange
+(
+    const dictionary& dict,
+    const word& key,
+    const scalar value,
+    const valueRange& range,
+    const std::string& what
+)
+{
+    FatalIOErrorInFunction(dict)
+        << "Entry '" << key << "' in " << dict.name() << ": "
+        << (what.empty() ? std::string("the value") : what).c_str() << ' '
+        << value << (std::isfinite(value) ? " is out of range" : " is not finite")
+        << nl << "    Allowed: " << (range.lowerOpen ? "(" : "[")
+        << range.lower << ", " << range.upper << "] " << range.unit << ": "
+        << range.why << exit(FatalIOError);
+    std::abort();
+}
+
+
+Foam::scalar Foam::getChecked
+(
+    const dictionary& dict,
+    const word& key,
+    const valueRange& range
+)
+{
+    const scalar value = dict.get<scalar>(key);
+    if (!range.holds(value)) outOfRange(dict, key, value, range);
+    return value;
+}
+
+
+Foam::scalar Foam::getCheckedOrDefault
+(
+    const dictionary& dict,
+    const word& key,
+    const scalar deflt,
+    const valueRange& range
+)
+{
+    if (!dict.found(key)) return deflt;
+    return getChecked(dict, key, range);
+}
+
+
+Foam::vector Foam::getCheckedVector
+(
+    const dictionary& dict,
+    const word& key,
+    const valueRange& magnitude,
+    const vector* deflt
+)
+{
+    if (deflt && !dict.found(key)) return *deflt;
+    const vector v = dict.get<vector>(key);
+    for (direction c = 0; c < vector::nComponents; ++c)
+    {
+        if (!std::isfinite(v[c]))
+        {
+            outOfRange(dict, key, v[c], magnitude, "a component");
+        }
+    }
+    // |v| without overflow: a component of 1e200 squares to infinity
+    const scalar scale = cmptMax(cmptMag(v));
+    const scalar m = scale > 0 ? scale*mag(v/scale) : 0;
+    if (!magnitude.holds(m)) outOfRange(dict, key, m, magnitude, "the magnitude");
+    return v;
 }

@@ -1,10 +1,29 @@
 #include "timeStepControl.H"
 #include "checkKeywords.H"
+#include "saneRanges.H"
 #include "functionObject.H"
 #include "IFstream.H"
 
 #include <algorithm>
 #include <cmath>
+
+namespace
+{
+    //- maxCo: positive; above 1 the scheme is unstable (a warning, and
+    //  the blow-up tests use 20 on purpose), above 100 a step crosses a
+    //  hundred elements: a typing error
+    constexpr Foam::valueRange maxCoRange
+    {
+        0, 100, "", "positive; unstable above 1, absurd above 100", true
+    };
+
+    //- maxDeltaT: a positive step
+    constexpr Foam::valueRange maxDeltaTRange
+    {
+        0, Foam::GREAT, "s", "a positive step", true
+    };
+}
+
 
 // * * * * * * * * * * * * * Private Member Functions  * * * * * * * * * * * //
 
@@ -26,12 +45,18 @@ void Foam::timeStepControl::checkControlDict() const
             "functions", "libs", "profiling", "cacheTemporaryObjects",
             "fileHandler", "DebugSwitches", "InfoSwitches",
             "OptimisationSwitches", "DimensionSets", "DimensionedConstants",
-            "Tolerances", "logInterval"
+            "Tolerances", "logInterval", "maxSteps"
         }
     );
 
     const scalar start = runTime_.startTime().value();
     const scalar end = runTime_.endTime().value();
+    if (!std::isfinite(end))
+    {
+        FatalIOErrorInFunction(controls)
+            << "endTime " << end << " in " << controls.name()
+            << " is not finite" << exit(FatalIOError);
+    }
     if (end < start)
     {
         FatalIOErrorInFunction(controls)
@@ -63,8 +88,15 @@ void Foam::timeStepControl::checkControlDict() const
 
 Foam::scalar Foam::timeStepControl::stepToWriteTime(const scalar dt) const
 {
-    const scalar t = runTime_.value() - startTime_;
+    // The write times are multiples of writeInterval from the start time.
+    // A restart starts on one of the first run's write times: measured
+    // from 0 as that run measured them, the steps are the same to the bit
+    // (measured from the restart's start, they differ at round-off)
     const scalar tol = 1e-9*writeInterval_;
+    const scalar phase =
+        startTime_ - std::round(startTime_/writeInterval_)*writeInterval_;
+    const scalar origin = std::abs(phase) < tol ? 0 : startTime_;
+    const scalar t = runTime_.value() - origin;
     const scalar next =
         (std::floor((t + tol)/writeInterval_) + 1)*writeInterval_;
     const scalar toNext = next - t;
@@ -106,8 +138,17 @@ Foam::timeStepControl::timeStepControl(Time& runTime)
     (
         runTime.controlDict().getOrDefault<Switch>("adjustTimeStep", false)
     ),
-    maxCo_(runTime.controlDict().getOrDefault<scalar>("maxCo", 0.9)),
-    maxDeltaT_(runTime.controlDict().getOrDefault<scalar>("maxDeltaT", GREAT)),
+    maxCo_
+    (
+        getCheckedOrDefault(runTime.controlDict(), "maxCo", 0.9, maxCoRange)
+    ),
+    maxDeltaT_
+    (
+        getCheckedOrDefault
+        (
+            runTime.controlDict(), "maxDeltaT", GREAT, maxDeltaTRange
+        )
+    ),
     logInterval_(runTime.controlDict().getOrDefault<label>("logInterval", 100)),
     landOnWriteTimes_
     (
@@ -125,10 +166,19 @@ Foam::timeStepControl::timeStepControl(Time& runTime)
     ),
     startTime_(runTime.startTime().value()),
     stableDeltaT_(GREAT),
-    wallStart_(std::chrono::steady_clock::now())
+    wallStart_(std::chrono::steady_clock::now()),
+    maxSteps_(runTime.controlDict().getOrDefault<scalar>("maxSteps", 1e7)),
+    loopStart_(wallStart_)
 {
     checkControlDict();
     const dictionary& controls = runTime.controlDict();
+    if (!(maxSteps_ >= 1) || !std::isfinite(maxSteps_))
+    {
+        FatalIOErrorInFunction(controls)
+            << "maxSteps " << maxSteps_ << " in " << controls.name()
+            << " must be a finite count of at least 1 (default 1e7)"
+            << exit(FatalIOError);
+    }
     if (!(maxCo_ > 0) || logInterval_ < 1)
     {
         FatalIOErrorInFunction(controls)
@@ -162,22 +212,98 @@ void Foam::timeStepControl::check(const scalar stable) const
 }
 
 
-void Foam::timeStepControl::reportStart
-(
-    Ostream& os,
-    const scalar stable
-) const
+Foam::scalar Foam::timeStepControl::stepFor(const scalar stable) const
 {
-    const scalar dt =
+    return
         adjustTimeStep_
       ? min(maxCo_*stable, maxDeltaT_)
       : runTime_.deltaTValue();
+}
+
+
+Foam::scalar Foam::timeStepControl::projectedSteps(const scalar dt) const
+{
     const scalar remaining = runTime_.endTime().value() - runTime_.value();
-    os  << "Time step: stable " << stable << " s at Courant number 1; "
-        << (adjustTimeStep_ ? "adjusted to " : "fixed ") << dt << " s"
-        << " (Courant number " << dt/stable << "); about "
-        << label(std::ceil(remaining/dt*(1 - 1e-12))) << " steps to endTime "
-        << runTime_.endTime().value() << nl << endl;
+    return
+        scalar(runTime_.timeIndex() - runTime_.startTimeIndex())
+      + std::ceil(remaining/dt*(1 - 1e-12));
+}
+
+
+Foam::scalar Foam::timeStepControl::wallTime() const
+{
+    return
+        std::chrono::duration<scalar>
+        (
+            std::chrono::steady_clock::now() - wallStart_
+        ).count();
+}
+
+
+void Foam::timeStepControl::reportStart
+(
+    Ostream& os,
+    const scalar stable,
+    const std::string& limit
+)
+{
+    loopStart_ = std::chrono::steady_clock::now();
+    const scalar dt = stepFor(stable);
+    const scalar remaining = runTime_.endTime().value() - runTime_.value();
+    os  << "Time step: stable " << stable << " s at Courant number 1, set by "
+        << limit.c_str() << nl
+        << "    " << (adjustTimeStep_ ? "adjusted to " : "fixed ") << dt
+        << " s (Courant number " << dt/stable << "); about "
+        << std::ceil(remaining/dt*(1 - 1e-12)) << " steps to endTime "
+        << runTime_.endTime().value() << " (maxSteps " << maxSteps_ << ")"
+        << nl << "    wall time: estimated after the first "
+        << wallEstimateSteps << " steps" << nl << endl;
+}
+
+
+bool Foam::timeStepControl::withinMaxSteps(const scalar stable) const
+{
+    return projectedSteps(stepFor(stable)) <= maxSteps_;
+}
+
+
+void Foam::timeStepControl::stopAtMaxSteps
+(
+    const scalar stable,
+    const std::string& limit
+) const
+{
+    const scalar dt = stepFor(stable);
+    const label taken = runTime_.timeIndex() - runTime_.startTimeIndex();
+    FatalIOErrorInFunction(runTime_.controlDict())
+        << "At time " << runTime_.timeName() << " (" << taken
+        << " steps taken) the step is " << dt << " s (stable " << stable
+        << " s at Courant number 1), set by " << limit.c_str() << nl
+        << "    endTime " << runTime_.endTime().value() << " needs about "
+        << projectedSteps(dt) << " steps, more than maxSteps " << maxSteps_
+        << " of " << runTime_.controlDict().name() << nl
+        << "    Check the entries named above, or raise maxSteps if the run"
+        << " is meant to take that many steps." << exit(FatalIOError);
+    std::abort();
+}
+
+
+void Foam::timeStepControl::reportWallEstimate(Ostream& os) const
+{
+    const label taken = runTime_.timeIndex() - runTime_.startTimeIndex();
+    if (taken != wallEstimateSteps) return;
+    const scalar wall =
+        std::chrono::duration<scalar>
+        (
+            std::chrono::steady_clock::now() - loopStart_
+        ).count();
+    const scalar span = runTime_.endTime().value() - startTime_;
+    const scalar done = span > 0 ? (runTime_.value() - startTime_)/span : 1;
+    os  << "Wall time: about "
+        << (done > 0 ? std::round(wall*(1 - done)/done) : 0)
+        << " s to endTime (from the first " << taken << " steps, "
+        << std::round(10*taken/max(wall, SMALL))/10 << " steps/s)" << nl
+        << endl;
 }
 
 
@@ -185,11 +311,7 @@ void Foam::timeStepControl::reportProgress(Ostream& os) const
 {
     const scalar span = runTime_.endTime().value() - startTime_;
     const scalar done = span > 0 ? (runTime_.value() - startTime_)/span : 1;
-    const scalar wall =
-        std::chrono::duration<scalar>
-        (
-            std::chrono::steady_clock::now() - wallStart_
-        ).count();
+    const scalar wall = wallTime();
     const label steps = runTime_.timeIndex() - runTime_.startTimeIndex();
     os  << "Progress: " << std::round(1000*done)/10 << " % of endTime, "
         << (wall > 0 ? std::round(10*steps/wall)/10 : 0) << " steps/s, ETA "

@@ -70,7 +70,7 @@ Foam::elasticSolid::hypothesis readHypothesis
 Foam::elasticSolid::elasticSolid(const word& name, const dictionary& dict)
 :
     spemMaterial(name, dict),
-    E_(readPositive("E")),
+    E_(readChecked("E", saneRange::youngsModulus)),
     nu_(readPoisson(dict, name)),
     hypothesis_(readHypothesis(dict, name)),
     lambda_(E_*nu_/((1 + nu_)*(1 - 2*nu_))),

@@ -7,14 +7,16 @@ namespace Foam
 }
 
 
-Foam::scalar Foam::spemMaterial::readPositive(const word& key) const
+Foam::scalar Foam::spemMaterial::readChecked
+(
+    const word& key,
+    const valueRange& range
+) const
 {
     const scalar value = dict_.get<scalar>(key);
-    if (!(value > 0))
+    if (!range.holds(value))
     {
-        FatalIOErrorInFunction(dict_)
-            << "Entry '" << key << "' of region " << name_
-            << " must be positive, found " << value << exit(FatalIOError);
+        outOfRange(dict_, key, value, range, "region " + name_ + ':');
     }
     return value;
 }
@@ -24,7 +26,7 @@ Foam::spemMaterial::spemMaterial(const word& name, const dictionary& dict)
 :
     name_(name),
     dict_(dict),
-    rho_(readPositive("rho"))
+    rho_(readChecked("rho", saneRange::density))
 {}
 
 

@@ -42,17 +42,13 @@ Foam::weaklyCompressibleNewtonian::weaklyCompressibleNewtonian
 )
 :
     spemMaterial(name, dict),
-    c_(readPositive("c")),
-    mu_(dict.getOrDefault<scalar>("mu", 0)),
+    c_(readChecked("c", saneRange::soundSpeed)),
+    mu_
+    (
+        dict.found("mu") ? readChecked("mu", saneRange::viscosity) : 0
+    ),
     hydrostaticStart_(readHydrostaticStart(name, dict))
-{
-    if (mu_ < 0)
-    {
-        FatalIOErrorInFunction(dict)
-            << "Entry 'mu' of region " << name << " must not be negative"
-            << exit(FatalIOError);
-    }
-}
+{}
 
 
 bool Foam::weaklyCompressibleNewtonian::stress

@@ -142,6 +142,18 @@ void Foam::spemMethod::createParticleHalf
         // Restart: the fluid particles come first; walls start at rho0
         rhoOld.resize(particles_->particles().size(), fluid.rho());
         particles_->setOldDensity(rhoOld);
+        std::vector<label> order;
+        label stepsSinceSort = 0;
+        if
+        (
+            case_.restart.readParticleOrder
+            (
+                particles_->particles(), order, stepsSinceSort
+            )
+        )
+        {
+            particles_->restoreOrder(order, stepsSinceSort);
+        }
     }
 
     const sphFluid::controls& c = particles_->schemeControls();
@@ -597,6 +609,65 @@ void Foam::spemMethod::revertToLastGood()
     // evaluated before)
     if (elements_) elements_->evaluate();
     if (particles_) particles_->evaluate();
+}
+
+
+std::string Foam::spemMethod::stableStepLimit() const
+{
+    std::ostringstream os;
+    const bool fromElements =
+        elements_
+     && (!particles_ || elements_->stableDeltaT() <= particles_->stableDeltaT());
+    if (fromElements && elements_->stableLimit().region >= 0)
+    {
+        const stepLimit& l = elements_->stableLimit();
+        const spemMaterial& mat = elements_->material(l.region);
+        os  << "the " << stepLimit::name(l.which) << " limit of the elements"
+            << " of region " << elements_->regions()[l.region].name << ": ";
+        switch (l.which)
+        {
+            case stepLimit::criterion::acoustic:
+                os  << "h/c with c " << mat.waveSpeed() << " m/s (entry c)";
+                break;
+            case stepLimit::criterion::viscous:
+                os  << "0.25 h^2 rho/mu with mu "
+                    << mat.rho()*mat.kinematicViscosity() << " Pa s, rho "
+                    << mat.rho() << " kg/m3 (entries mu, rho)";
+                break;
+            default:
+                os  << "h/c_p with the longitudinal wave speed c_p "
+                    << mat.waveSpeed() << " m/s at rest (entries E, nu, rho)";
+                break;
+        }
+        if (l.length > 0) os << ", smallest altitude h " << l.length << " m";
+    }
+    else if (particles_ && particles_->stableLimit().which != stepLimit::criterion::none)
+    {
+        const sphFluid& p = *particles_;
+        const stepLimit& l = p.stableLimit();
+        os  << "the " << stepLimit::name(l.which) << " limit of the fluid"
+            << " particles: ";
+        switch (l.which)
+        {
+            case stepLimit::criterion::acoustic:
+                os  << "h/(c + |v|) with c " << p.c() << " m/s (entry c)";
+                break;
+            case stepLimit::criterion::viscous:
+                os  << "0.125 h^2 rho/mu with mu " << p.mu() << " Pa s, rho "
+                    << p.rho0() << " kg/m3 (entries mu, rho)";
+                break;
+            default:
+                os  << "0.25 sqrt(h/|a|), the largest acceleration |a| of a"
+                    << " particle, with gravity (" << p.gx() << ' ' << p.gy()
+                    << ") m/s2 (constant/g)";
+                break;
+        }
+    }
+    else
+    {
+        os  << "no limit (no elements or particles)";
+    }
+    return os.str();
 }
 
 

@@ -258,6 +258,7 @@ void Foam::elementModel::buildReferenceGeometry()
     domainGrad_.assign(4*nDom, 0);
     domainStress_.assign(4*nDom, 0);
     solidTimeScale_ = std::numeric_limits<scalar>::max();
+    solidLimit_ = stepLimit();
 
     // Initial density of an element: from initialDensity or rho0
     const auto rhoOf = [&](const label el, const scalar rho0)
@@ -287,6 +288,10 @@ void Foam::elementModel::buildReferenceGeometry()
             {
                 const scalar h = minAltitude(&X_[2*n[0]], &X_[2*n[1]], &X_[2*n[2]], A);
                 solidTimeScale_ = std::min(solidTimeScale_, h/mat.waveSpeed());
+                solidLimit_.keepSmaller
+                (
+                    stepLimit::criterion::solidWave, h/mat.waveSpeed(), r, h
+                );
             }
         }
         for (label k = regions_[r].domainBegin; k < regions_[r].domainEnd; ++k)
@@ -311,6 +316,7 @@ bool Foam::elementModel::elementPass()
     const scalar* v = v_[cur_].data();
     bool ok = true;
     scalar timeScale = solidTimeScale_;
+    stepLimit limit = solidLimit_;
 
     for (label r = 0; r < regions_.size(); ++r)
     {
@@ -354,8 +360,16 @@ bool Foam::elementModel::elementPass()
                 ok = false;
             }
             timeScale = std::min(timeScale, hMin/c);
+            limit.keepSmaller(stepLimit::criterion::acoustic, hMin/c, r, hMin);
             // Explicit viscous diffusion limit
-            if (nu > 0) timeScale = std::min(timeScale, 0.25*hMin*hMin/nu);
+            if (nu > 0)
+            {
+                timeScale = std::min(timeScale, 0.25*hMin*hMin/nu);
+                limit.keepSmaller
+                (
+                    stepLimit::criterion::viscous, 0.25*hMin*hMin/nu, r, hMin
+                );
+            }
         }
         else
         {
@@ -420,6 +434,12 @@ bool Foam::elementModel::elementPass()
             {
                 timeScale =
                     std::min(timeScale, std::sqrt(4*mat.rho()*minRatio));
+                // h is not known apart from the ratio: no length
+                limit.keepSmaller
+                (
+                    stepLimit::criterion::solidWave,
+                    std::sqrt(4*mat.rho()*minRatio), r, 0
+                );
             }
             if (!regionOk)
             {
@@ -430,6 +450,7 @@ bool Foam::elementModel::elementPass()
         }
     }
     stableDeltaT_ = timeScale;
+    stableLimit_ = limit;
     return ok;
 }
 

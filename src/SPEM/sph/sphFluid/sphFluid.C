@@ -200,24 +200,36 @@ namespace
         return rhoNew;
     }
 
-    //- Stable step of a fluid particle at Courant number 1: acoustic,
-    //  force and viscous limits (see sphFluid::stableDeltaT())
-    inline scalar particleDeltaT
+    //- Stable steps of a fluid particle at Courant number 1, each limit
+    //  apart so that the smallest can be named: the acoustic, force and
+    //  viscous minima dt[0..2] are lowered to this particle's (see
+    //  sphFluid::stableDeltaT())
+    inline void particleDeltaT
     (
         const scalar speed,
         const scalar acc,
         const scalar h,
         const scalar c,
-        const scalar nu
+        const scalar nu,
+        scalar& dtAcoustic,
+        scalar& dtForce,
+        scalar& dtViscous
     )
     {
-        scalar dti = Foam::sphFluid::acousticFactor*h/(c + speed);
+        dtAcoustic =
+            std::min(dtAcoustic, Foam::sphFluid::acousticFactor*h/(c + speed));
         if (acc > 0)
         {
-            dti = std::min(dti, Foam::sphFluid::forceFactor*std::sqrt(h/acc));
+            dtForce = std::min
+            (
+                dtForce, Foam::sphFluid::forceFactor*std::sqrt(h/acc)
+            );
         }
-        if (nu > 0) dti = std::min(dti, Foam::sphFluid::viscousFactor*h*h/nu);
-        return dti;
+        if (nu > 0)
+        {
+            dtViscous =
+                std::min(dtViscous, Foam::sphFluid::viscousFactor*h*h/nu);
+        }
     }
 }
 
@@ -521,6 +533,9 @@ bool Foam::sphFluid::checkParticles()
 void Foam::sphFluid::reorder()
 {
     const std::vector<label>& order = cells_.sortOrder();
+    // Kept for evaluationOrder(); the capacity stays, so this allocates
+    // only when the particle count grows
+    lastSortOrder_.assign(order.begin(), order.end());
     particles_.reorder(order);
     particles_.reorderField(order, 2, oldPosition_);
     particles_.reorderField(order, 2, oldVelocity_);
@@ -757,10 +772,11 @@ void Foam::sphFluid::momentumPass(const Kernel&)
 
     const scalar mu = mu_, gx = gx_, gy = gy_, c = c_;
     const scalar nu = mu_/rho0_;
-    scalar fwx = 0, fwy = 0, fgx = 0, fgy = 0, fsx = 0, fsy = 0, dtMin = GREAT;
+    scalar fwx = 0, fwy = 0, fgx = 0, fgy = 0, fsx = 0, fsy = 0;
+    scalar dtAcoustic = GREAT, dtForce = GREAT, dtViscous = GREAT;
 
     // Performance critical: every fluid particle, every step.
-    #pragma omp parallel for schedule(static) reduction(+: fwx, fwy, fgx, fgy, fsx, fsy) reduction(min: dtMin) if(n > minParallelLoop)
+    #pragma omp parallel for schedule(static) reduction(+: fwx, fwy, fgx, fgy, fsx, fsy) reduction(min: dtAcoustic, dtForce, dtViscous) if(n > minParallelLoop)
     for (label i = 0; i < n; ++i)
     {
         if (kind[i] != particleSet::kind::fluid)
@@ -822,7 +838,10 @@ void Foam::sphFluid::momentumPass(const Kernel&)
         // Stable step of this particle at Courant number 1
         const scalar speed = std::sqrt(vxi*vxi + vyi*vyi);
         const scalar acc = std::sqrt(a[2*i]*a[2*i] + a[2*i + 1]*a[2*i + 1]);
-        dtMin = std::min(dtMin, particleDeltaT(speed, acc, h[i], c, nu));
+        particleDeltaT
+        (
+            speed, acc, h[i], c, nu, dtAcoustic, dtForce, dtViscous
+        );
     }
 
     wallForce_[0] = fwx;
@@ -831,7 +850,13 @@ void Foam::sphFluid::momentumPass(const Kernel&)
     ghostForce_[1] = fgy;
     structureForce_[0] = fsx;
     structureForce_[1] = fsy;
-    stableDeltaT_ = dtMin;
+    // The minimum of the three is the minimum over all particles and
+    // limits, as one reduction gave it
+    stableLimit_ = stepLimit();
+    stableLimit_.keepSmaller(stepLimit::criterion::acoustic, dtAcoustic, -1, 0);
+    stableLimit_.keepSmaller(stepLimit::criterion::bodyForce, dtForce, -1, 0);
+    stableLimit_.keepSmaller(stepLimit::criterion::viscous, dtViscous, -1, 0);
+    stableDeltaT_ = std::min({dtAcoustic, dtForce, dtViscous});
 }
 
 
@@ -896,6 +921,7 @@ bool Foam::sphFluid::evaluate()
 
     const scalar kappa = kernel_->support();
     cells_.update(particles_, kappa*particles_.maxSmoothingLength());
+    lastSortOrder_.clear();
     if (++stepsSinceReorder_ >= reorderInterval)
     {
         reorder();
@@ -1231,6 +1257,61 @@ void Foam::sphFluid::setGhosts
 void Foam::sphFluid::setOldDensity(const std::vector<scalar>& rhoOld)
 {
     oldDensity_ = rhoOld;
+}
+
+
+void Foam::sphFluid::evaluationOrder(std::vector<label>& order) const
+{
+    const label n = particles_.size();
+    const std::vector<particleSet::kind>& kind = particles_.kinds();
+    const auto keep = [&](const label i)
+    {
+        return
+            kind[i] == particleSet::kind::fluid
+         || kind[i] == particleSet::kind::wall
+         || kind[i] == particleSet::kind::slipWall;
+    };
+    order.clear();
+    if (label(lastSortOrder_.size()) != n)
+    {
+        for (label i = 0; i < n; ++i)
+        {
+            if (keep(i)) order.push_back(i);
+        }
+        return;
+    }
+    // The particle now at i was at lastSortOrder_[i] before the sort
+    std::vector<label> before(n);
+    for (label i = 0; i < n; ++i) before[lastSortOrder_[i]] = i;
+    for (const label i : before)
+    {
+        if (keep(i)) order.push_back(i);
+    }
+}
+
+
+void Foam::sphFluid::restoreOrder
+(
+    const std::vector<label>& newToOld,
+    const label stepsSinceReorder
+)
+{
+    const label n = particles_.size();
+    std::vector<label> order(newToOld);
+    std::vector<bool> placed(n, false);
+    for (const label i : newToOld) placed[i] = true;
+    for (label i = 0; i < n; ++i)
+    {
+        if (!placed[i]) order.push_back(i);
+    }
+    particles_.reorder(order);
+    particles_.reorderField(order, 2, oldPosition_);
+    particles_.reorderField(order, 2, oldVelocity_);
+    particles_.reorderField(order, 1, oldDensity_);
+    // evaluate() counts this step before it decides to sort: one less,
+    // and a sort there (0) is the step before reorderInterval
+    stepsSinceReorder_ =
+        stepsSinceReorder > 0 ? stepsSinceReorder - 1 : reorderInterval - 1;
 }
 
 

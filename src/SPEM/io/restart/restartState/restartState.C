@@ -13,6 +13,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <sstream>
 
 namespace
 {
@@ -125,6 +126,79 @@ void Foam::restartState::checkValues
 }
 
 
+void Foam::restartState::checkPositions
+(
+    const IOobject& io,
+    const vectorField& x
+) const
+{
+    const bounds& b = bounds_;
+    forAll(x, i)
+    {
+        if
+        (
+            x[i].x() < b.boxMin[0] || x[i].x() > b.boxMax[0]
+         || x[i].y() < b.boxMin[1] || x[i].y() > b.boxMax[1]
+        )
+        {
+            std::ostringstream os;
+            os  << "entry " << i << ", position (" << x[i].x() << ' '
+                << x[i].y() << "), is outside the box [(" << b.boxMin[0]
+                << ' ' << b.boxMin[1] << "), (" << b.boxMax[0] << ' '
+                << b.boxMax[1] << ")], the mesh enlarged by 1000 times"
+                << " its size, which no particle of a valid state leaves";
+            bad(io, os.str());
+        }
+    }
+}
+
+
+void Foam::restartState::checkSpeeds
+(
+    const IOobject& io,
+    const vectorField& v
+) const
+{
+    forAll(v, i)
+    {
+        // Scaled: a component of 1e300 must not overflow its square
+        const scalar s = max(mag(v[i].x()), mag(v[i].y()));
+        const scalar speed =
+            s > 0 ? s*std::sqrt(sqr(v[i].x()/s) + sqr(v[i].y()/s)) : 0;
+        if (!(speed < bounds_.maxSpeed))
+        {
+            std::ostringstream os;
+            os  << "entry " << i << ", speed " << speed << " m/s, is not below"
+                << " the fastest wave speed of the case, "
+                << bounds_.maxSpeed << " m/s (Mach < 1)";
+            bad(io, os.str());
+        }
+    }
+}
+
+
+void Foam::restartState::checkBetween
+(
+    const IOobject& io,
+    const scalarField& f,
+    const scalar lower,
+    const scalar upper,
+    const std::string& why
+) const
+{
+    forAll(f, i)
+    {
+        if (!(f[i] >= lower && f[i] <= upper))
+        {
+            std::ostringstream os;
+            os  << "entry " << i << ", " << f[i] << ", is outside ["
+                << lower << ", " << upper << "]: " << why;
+            bad(io, os.str());
+        }
+    }
+}
+
+
 void Foam::restartState::writeParticles(const sphFluid& particles) const
 {
     const particleSet& ps = particles.particles();
@@ -167,6 +241,34 @@ void Foam::restartState::writeParticles(const sphFluid& particles) const
     {
         writeExact(*f);
     }
+
+    // The storage order the next evaluation starts from: fluid particle k
+    // of the files above is k, wall particle r (by id) is nFluid + r
+    std::vector<label> code(ps.size(), -1);
+    forAll(xf, k) code[order[k]] = k;
+    std::vector<label> walls;
+    for (label i = 0; i < ps.size(); ++i)
+    {
+        if (particleSet::isWall(ps.kinds()[i])
+         && ps.kinds()[i] != particleSet::kind::structure)
+        {
+            walls.push_back(i);
+        }
+    }
+    std::sort
+    (
+        walls.begin(), walls.end(),
+        [&](const label a, const label b) { return ps.id()[a] < ps.id()[b]; }
+    );
+    forAll(walls, r) code[walls[r]] = nFluid + r;
+    std::vector<label> evaluation;
+    particles.evaluationOrder(evaluation);
+    IOdictionary storage(outFile("particleOrder"));
+    labelList slots(label(evaluation.size()));
+    forAll(slots, s) slots[s] = code[evaluation[s]];
+    storage.add("order", slots);
+    storage.add("stepsSinceSort", particles.stepsSinceReorder());
+    writeExact(storage, true);
 }
 
 
@@ -344,6 +446,8 @@ bool Foam::restartState::readElements(elementModel& elements) const
     }
     checkValues(xIO, xf);
     checkValues(vIO, vf);
+    checkPositions(xIO, xf);
+    checkSpeeds(vIO, vf);
     std::vector<scalar> x(2*xf.size()), v(2*vf.size());
     forAll(xf, i)
     {
@@ -408,6 +512,29 @@ bool Foam::restartState::readParticles
     checkValues(old, old, true);
     checkValues(m, m, true);
     checkValues(h, h, true);
+    checkPositions(xIO, xf);
+    checkSpeeds(vf, vf);
+    const bounds& b = bounds_;
+    if (b.rho0 > 0)
+    {
+        const std::string why =
+            "a density beyond a factor of 2 from rho0 would take a flow at"
+            " Mach ~1 to make";
+        checkBetween(rho, rho, 0.5*b.rho0, 2*b.rho0, why);
+        checkBetween(old, old, 0.5*b.rho0, 2*b.rho0, why);
+        const scalar dx = b.boxMax[0] - b.boxMin[0];
+        const scalar dy = b.boxMax[1] - b.boxMin[1];
+        checkBetween
+        (
+            m, m, 0, 2*b.rho0*dx*dy,
+            "more than 2 rho0 times the area of the box of the positions"
+        );
+        checkBetween
+        (
+            h, h, 0, std::sqrt(dx*dx + dy*dy),
+            "larger than the diagonal of the box of the positions"
+        );
+    }
 
     particles.reserve(n);
     forAll(xf, i)
@@ -421,6 +548,64 @@ bool Foam::restartState::readParticles
     rhoOld.assign(old.begin(), old.end());
     Info<< "Restart: read " << n << " fluid particles from " << xIO.path()
         << nl << endl;
+    return true;
+}
+
+
+bool Foam::restartState::readParticleOrder
+(
+    const particleSet& particles,
+    std::vector<label>& newToOld,
+    label& stepsSinceSort
+) const
+{
+    const IOobject io(file("particleOrder"));
+    if (!listed<IOdictionary>(io)) return false;
+    const IOdictionary storage(io);
+    const labelList slots(storage.get<labelList>("order"));
+    stepsSinceSort = storage.get<label>("stepsSinceSort");
+
+    // Fluid particles and walls, each in the order of their ids
+    std::vector<label> fluid, walls;
+    for (label i = 0; i < particles.size(); ++i)
+    {
+        const particleSet::kind k = particles.kinds()[i];
+        if (k == particleSet::kind::fluid) fluid.push_back(i);
+        else if (k == particleSet::kind::wall || k == particleSet::kind::slipWall)
+        {
+            walls.push_back(i);
+        }
+    }
+    const auto byId = [&](const label a, const label b)
+    {
+        return particles.id()[a] < particles.id()[b];
+    };
+    std::sort(fluid.begin(), fluid.end(), byId);
+    std::sort(walls.begin(), walls.end(), byId);
+    const label nFluid = label(fluid.size());
+    const label n = nFluid + label(walls.size());
+    if (slots.size() != n || stepsSinceSort < 0)
+    {
+        bad
+        (
+            io,
+            std::to_string(slots.size()) + " slots for "
+          + std::to_string(nFluid) + " fluid and "
+          + std::to_string(walls.size()) + " wall particles"
+        );
+    }
+    std::vector<bool> seen(n, false);
+    newToOld.resize(n);
+    forAll(slots, s)
+    {
+        const label c = slots[s];
+        if (c < 0 || c >= n || seen[c])
+        {
+            bad(io, "slot " + std::to_string(s) + " is out of range or repeated");
+        }
+        seen[c] = true;
+        newToOld[s] = c < nFluid ? fluid[c] : walls[c - nFluid];
+    }
     return true;
 }
 
@@ -449,6 +634,7 @@ void Foam::restartState::readAcceleration
     }
     checkValues(uIO, U);
     checkValues(aIO, A);
+    checkSpeeds(uIO, U);
     std::vector<scalar> u(2*U.size()), a(2*A.size());
     forAll(U, k)
     {
@@ -516,9 +702,15 @@ Foam::scalar Foam::restartState::readPreviousDeltaT() const
         bad(io, "missing: the state has no step history");
     }
     const scalar dt = IOdictionary(io).get<scalar>("previousDeltaT");
-    if (!(std::isfinite(dt) && dt >= 0))
+    // The steps before the state sum to its time: none is longer
+    if (!(std::isfinite(dt) && dt >= 0 && dt <= runTime_.value()*(1 + 1e-9)))
     {
-        bad(io, "previousDeltaT is not a finite non-negative step");
+        bad
+        (
+            io,
+            "previousDeltaT is not a step of the run: not finite, negative"
+            " or longer than the time of the state"
+        );
     }
     return dt;
 }

@@ -16,23 +16,16 @@ Foam::freeMotion::freeMotion
 )
 :
     rigidBodyMotion(dict, shape),
-    mass_(dict.get<scalar>("mass")),
+    mass_(getChecked(dict, "mass", saneRange::bodyMass)),
     momentOfInertia_(0),
     held_{false, false, false}
 {
-    // Written to reject NaN as well
-    if (!(mass_ > 0))
-    {
-        FatalIOErrorInFunction(dict)
-            << "Entry 'mass " << mass_ << "' of " << dict.name()
-            << " must be positive" << exit(FatalIOError);
-    }
-
     // A uniform body: I = (m/A) integral of |X - c|^2 over the shape
-    momentOfInertia_ = dict.getOrDefault<scalar>
+    momentOfInertia_ = getCheckedOrDefault
     (
-        "momentOfInertia",
-        mass_/shape.area()*shape.polarMomentOfArea(position0())
+        dict, "momentOfInertia",
+        mass_/shape.area()*shape.polarMomentOfArea(position0()),
+        saneRange::momentOfInertia
     );
     if (!(momentOfInertia_ > 0))
     {
@@ -41,8 +34,14 @@ Foam::freeMotion::freeMotion
             << dict.name() << " must be positive" << exit(FatalIOError);
     }
 
-    velocity_ = getOrDefault2D(dict, "initialVelocity", vector2D::zero);
-    angularVelocity_ = dict.getOrDefault<scalar>("initialAngularVelocity", 0);
+    velocity_ = getOrDefault2D
+    (
+        dict, "initialVelocity", vector2D::zero, saneRange::speed
+    );
+    angularVelocity_ = getCheckedOrDefault
+    (
+        dict, "initialAngularVelocity", 0, saneRange::angularVelocity
+    );
 
     const wordList constraints
     (

@@ -19,7 +19,13 @@ Foam::prescribedMotion::prescribedMotion
 )
 :
     rigidBodyMotion(dict, shape),
-    omega_(dict.getOrDefault<scalar>("angularVelocity", 0))
+    omega_
+    (
+        getCheckedOrDefault
+        (
+            dict, "angularVelocity", 0, saneRange::angularVelocity
+        )
+    )
 {
     const bool constant = dict.found("velocity", keyType::LITERAL);
     const bool table = dict.found("velocityTable", keyType::LITERAL);
@@ -34,7 +40,7 @@ Foam::prescribedMotion::prescribedMotion
     if (constant)
     {
         times_.push_back(0);
-        velocities_.push_back(get2D(dict, "velocity"));
+        velocities_.push_back(get2D(dict, "velocity", saneRange::speed));
     }
     else
     {
@@ -58,8 +64,22 @@ Foam::prescribedMotion::prescribedMotion
                     << " must increase: " << e.first() << " follows "
                     << times_.back() << exit(FatalIOError);
             }
+            const vector& v = e.second();
+            const scalar speed =
+                std::sqrt(sqr(v.x()) + sqr(v.y()) + sqr(v.z()));
+            if (!std::isfinite(e.first()) || !saneRange::speed.holds(speed))
+            {
+                outOfRange
+                (
+                    dict, "velocityTable",
+                    std::isfinite(e.first()) ? speed : e.first(),
+                    saneRange::speed,
+                    "a time or a speed of the table (at time "
+                  + std::to_string(e.first()) + ")"
+                );
+            }
             times_.push_back(e.first());
-            velocities_.push_back(vector2D(e.second().x(), e.second().y()));
+            velocities_.push_back(vector2D(v.x(), v.y()));
         }
     }
 

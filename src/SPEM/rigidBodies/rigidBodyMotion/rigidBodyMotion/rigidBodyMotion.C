@@ -39,10 +39,11 @@ void setExact(Foam::dictionary& dict, const Foam::word& key, const Foam::vector2
 Foam::vector2D Foam::rigidBodyMotion::get2D
 (
     const dictionary& dict,
-    const word& key
+    const word& key,
+    const valueRange& range
 )
 {
-    const vector v(dict.get<vector>(key));
+    const vector v(getCheckedVector(dict, key, range));
     return vector2D(v.x(), v.y());
 }
 
@@ -51,10 +52,12 @@ Foam::vector2D Foam::rigidBodyMotion::getOrDefault2D
 (
     const dictionary& dict,
     const word& key,
-    const vector2D& deflt
+    const vector2D& deflt,
+    const valueRange& range
 )
 {
-    return dict.found(key, keyType::LITERAL) ? get2D(dict, key) : deflt;
+    return
+        dict.found(key, keyType::LITERAL) ? get2D(dict, key, range) : deflt;
 }
 
 
@@ -64,7 +67,13 @@ Foam::rigidBodyMotion::rigidBodyMotion
     const rigidBodyShape& shape
 )
 :
-    placement_(getOrDefault2D(dict, "centreOfMass", shape.centroid())),
+    placement_
+    (
+        getOrDefault2D
+        (
+            dict, "centreOfMass", shape.centroid(), saneRange::length
+        )
+    ),
     velocity_(Zero),
     angularVelocity_(0),
     force_(Zero),
@@ -118,10 +127,16 @@ void Foam::rigidBodyMotion::writeState(dictionary& dict) const
 
 void Foam::rigidBodyMotion::readState(const dictionary& dict)
 {
-    placement_.set(get2D(dict, "position"), dict.get<scalar>("angle"));
-    velocity_ = get2D(dict, "velocity");
-    angularVelocity_ = dict.get<scalar>("angularVelocity");
-    force_ = get2D(dict, "force");
-    moment_ = dict.get<scalar>("moment");
-    previousDeltaT_ = dict.get<scalar>("previousDeltaT");
+    // A restart state: each value finite and sane, as the dictionaries
+    placement_.set
+    (
+        get2D(dict, "position", saneRange::length),
+        getChecked(dict, "angle", saneRange::stateValue)
+    );
+    velocity_ = get2D(dict, "velocity", saneRange::speed);
+    angularVelocity_ =
+        getChecked(dict, "angularVelocity", saneRange::angularVelocity);
+    force_ = get2D(dict, "force", saneRange::stateMagnitude);
+    moment_ = getChecked(dict, "moment", saneRange::stateValue);
+    previousDeltaT_ = getChecked(dict, "previousDeltaT", saneRange::stateMagnitude);
 }

@@ -1,5 +1,6 @@
 #include "circleShape.H"
 #include "addToRunTimeSelectionTable.H"
+#include "saneRanges.H"
 #include "mathematicalConstants.H"
 
 #include <cmath>
@@ -15,18 +16,10 @@ Foam::circleShape::circleShape(const dictionary& dict)
 :
     rigidBodyShape(),
     centre_(Zero),
-    radius_(dict.get<scalar>("radius"))
+    radius_(getChecked(dict, "radius", saneRange::radius))
 {
-    const vector centre(dict.get<vector>("centre"));
+    const vector centre(getCheckedVector(dict, "centre", saneRange::length));
     centre_ = vector2D(centre.x(), centre.y());
-
-    // Written to reject NaN as well
-    if (!(radius_ > 0))
-    {
-        FatalIOErrorInFunction(dict)
-            << "Entry 'radius " << radius_ << "' of " << dict.name()
-            << " must be positive" << exit(FatalIOError);
-    }
 }
 
 

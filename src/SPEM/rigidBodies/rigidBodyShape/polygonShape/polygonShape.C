@@ -1,6 +1,7 @@
 #include "polygonShape.H"
 #include "vectorList.H"
 #include "addToRunTimeSelectionTable.H"
+#include "saneRanges.H"
 
 #include <algorithm>
 #include <cmath>
@@ -143,6 +144,15 @@ Foam::polygonShape::polygonShape(const dictionary& dict)
     points_.reserve(points.size());
     for (const vector& p : points)
     {
+        const scalar r = std::sqrt(sqr(p.x()) + sqr(p.y()));
+        if (!saneRange::length.holds(r))
+        {
+            outOfRange
+            (
+                dict, "points", r, saneRange::length,
+                "the distance from the origin of a point"
+            );
+        }
         points_.push_back(vector2D(p.x(), p.y()));
     }
 
