@@ -726,7 +726,7 @@ bool Foam::elementModel::advance(const scalar dt)
                 if (!wallFriction_.empty() && wallFriction_[n] > 0)
                 {
                     const scalar hold =
-                        1/(1 + gain*wallFriction_[n]*invM);
+                        1/(1 + span*wallFriction_[n]*invM);
                     vn[0] *= hold;
                     vn[1] *= hold;
                 }
