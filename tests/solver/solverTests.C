@@ -944,6 +944,35 @@ TEST_F(Solver, missingSemicolonStopsNamingKeywordAndFile)
 }
 
 
+TEST_F(Solver, slidingFluidElementsOnlyOnANoSlipWall)
+{
+    // fluidElements slide is a no-slip wall's option; a slip wall already
+    // lets the nodes slide, a typo must not pass as the default
+    edit
+    (
+        boundaries_, "bottom  { type slipWall; }",
+        "bottom  { type slipWall; fluidElements slide; }"
+    );
+    std::string text = runExpectingFatalError();
+    expectInLog
+    (
+        text,
+        {"FATAL IO ERROR", "boundaries/bottom/fluidElements", "noSlipWall"}
+    );
+    edit
+    (
+        boundaries_, "bottom  { type slipWall; fluidElements slide; }",
+        "bottom  { type noSlipWall; fluidElements slid; }"
+    );
+    text = runExpectingFatalError();
+    expectInLog
+    (
+        text,
+        {"FATAL IO ERROR", "boundaries/bottom/fluidElements", "'slid'"}
+    );
+}
+
+
 TEST_F(Solver, unknownBoundaryTypeStopsListingValidTypes)
 {
     edit(boundaries_, "type freeSurface;", "type freeSurfac;");
