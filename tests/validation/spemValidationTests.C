@@ -198,22 +198,30 @@ std::set<long> cellPoints(const blockData& block)
     return used;
 }
 
-//- Add a rigidBodyState function object for body (named after it, every
-//  10 steps) to the case's controlDict; false if it has no functions
-bool addRigidBodyState(const fs::path& caseDir, const std::string& body)
+//- Add a function object entry ("name { type ...; }") at the top of the
+//  case's controlDict functions; false if it has no functions
+bool addFunctionObject(const fs::path& caseDir, const std::string& entry)
 {
     std::string text = testFiles::readText(caseDir/"system/controlDict");
     const std::string functions = "functions\n{";
     const size_t at = text.find(functions);
     if (at == std::string::npos) return false;
-    text.insert
-    (
-        at + functions.size(),
-        "\n    " + body + " { type rigidBodyState; body " + body + ";"
-        " writeControl timeStep; writeInterval 10; }\n"
-    );
+    text.insert(at + functions.size(), "\n    " + entry + "\n");
     std::ofstream(caseDir/"system/controlDict") << text;
     return true;
+}
+
+
+//- Add a rigidBodyState function object for body (named after it, every
+//  10 steps); false if the controlDict has no functions
+bool addRigidBodyState(const fs::path& caseDir, const std::string& body)
+{
+    return addFunctionObject
+    (
+        caseDir,
+        body + " { type rigidBodyState; body " + body + ";"
+        " writeControl timeStep; writeInterval 10; }"
+    );
 }
 
 //- Index of a region in constant/spemMesh/regionNames (-1 if absent)
@@ -500,19 +508,19 @@ damBreakProfiles(const std::string& method, const bool slide = false)
     }
     replaceEntry(caseDir/"system/controlDict", "endTime", "0.25");
     replaceEntry(caseDir/"system/controlDict", "writeInterval", "0.025");
-    std::string text = testFiles::readText(caseDir/"system/controlDict");
-    const std::string functions = "functions\n{";
-    const size_t at = text.find(functions);
-    if (at == std::string::npos) return {};
-    text.insert
+    if
     (
-        at + functions.size(),
-        "\n    surface { type freeSurfaceProfile;"
-        " writeControl adjustableRunTime;"
-        " writeInterval 0.025; }\n"
-    );
-    std::ofstream(caseDir/"system/controlDict") << text;
-    if (!runCase(caseDir)) return {};
+        !addFunctionObject
+        (
+            caseDir,
+            "surface { type freeSurfaceProfile;"
+            " writeControl adjustableRunTime; writeInterval 0.025; }"
+        )
+     || !runCase(caseDir)
+    )
+    {
+        return {};
+    }
 
     std::vector<std::pair<double, std::vector<std::vector<double>>>> out;
     const fs::path dir = caseDir/"postProcessing/surface/0";

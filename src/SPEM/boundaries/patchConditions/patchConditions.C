@@ -69,16 +69,7 @@ void Foam::nodeConstraints
             const label k = mesh.segmentEdge()[s];
             const label e =
                 max(mesh.edgeTriangles()[2*k], mesh.edgeTriangles()[2*k + 1]);
-            const std::vector<label>& tri = mesh.triangles();
-            const scalar* p0 = &X[2*tri[3*e]];
-            const scalar* p1 = &X[2*tri[3*e + 1]];
-            const scalar* p2 = &X[2*tri[3*e + 2]];
-            const scalar area =
-                0.5*std::abs
-                (
-                    (p1[0] - p0[0])*(p2[1] - p0[1])
-                  - (p2[0] - p0[0])*(p1[1] - p0[1])
-                );
+            const scalar area = std::abs(mesh.triangleArea(e));
             const scalar l2 =
                 sqr(X[2*b] - X[2*a]) + sqr(X[2*b + 1] - X[2*a + 1]);
             friction = max((*triangleViscosity)[e], scalar(0))*l2/(2*area);
