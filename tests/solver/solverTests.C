@@ -639,11 +639,7 @@ protected:
 
 
 //- Expect every part in the text (of a log)
-void expectInLog
-(
-    const std::string& text,
-    std::initializer_list<std::string> parts
-)
+void expectInLog(const std::string& text, const std::vector<std::string>& parts)
 {
     for (const std::string& part : parts)
     {
@@ -1486,6 +1482,119 @@ TEST_F(SolverDamagedRestart, nonPositiveDensityStopsNamingTheFile)
         }
     );
     expectInLog(text, {"FATAL ERROR", "particleRho", "not positive"});
+}
+
+
+//- Fixture: restartFallback yes, a continuous run to 0.04 (case A) and a
+//  run to 0.02 whose latest state is then damaged and continued to 0.04
+//  (case B): B must warn, fall back to 0.01 and end in A's state
+class SolverRestartFallback : public SolverDamagedRestart
+{
+protected:
+
+    template<class Damage>
+    void expectFallbackToTheTimeBefore
+    (
+        Damage&& damage,
+        const std::vector<std::string>& cause
+    )
+    {
+        setControl("restartFallback", "yes");
+        setControl("writeControl", "runTime");
+        setControl("writeInterval", "0.01");
+        setControl("endTime", "0.04");
+        runExpectingSuccess();
+        if (HasFailure()) return;
+        const fs::path caseA = caseDir_;
+
+        setControl("endTime", "0.02");
+        runExpectingSuccess();
+        if (HasFailure()) return;
+        damage(caseDir_/"0.02");
+        setControl("endTime", "0.04");
+        writeDictionaries();
+        const int status = runSolver("log.spemFoam.restart");
+        const std::string text = log("log.spemFoam.restart");
+        ASSERT_EQ(status, 0) << text;
+        std::vector<std::string> lines
+        {
+            "restartFallback", "the state of time 0.02 cannot be read",
+            "Falling back to time 0.01", "Starting time loop", "\nEnd"
+        };
+        lines.insert(lines.end(), cause.begin(), cause.end());
+        expectInLog(text, lines);
+        // The damaged time is written again, and the run ends where the
+        // continuous one did (a restart continues bit for bit)
+        EXPECT_EQ(differingStateFiles(caseA, caseDir_, "0.02"), 0);
+        EXPECT_EQ(differingStateFiles(caseA, caseDir_, "0.04"), 0);
+    }
+};
+
+
+TEST_F(SolverRestartFallback, missingStateFallsBackToTheTimeBefore)
+{
+    expectFallbackToTheTimeBefore
+    (
+        [](const fs::path& t) { fs::remove_all(t/"spem"); },
+        {"no restart state"}
+    );
+}
+
+
+TEST_F(SolverRestartFallback, truncatedParticleFileFallsBackToTheTimeBefore)
+{
+    useSPH();
+    expectFallbackToTheTimeBefore
+    (
+        [](const fs::path& t)
+        {
+            // Cut in the middle of the list, as a full disk leaves it
+            const fs::path f = t/"spem"/"particlePositions";
+            const std::string body = readText(f);
+            std::ofstream(f, std::ios::trunc) << body.substr(0, body.size()/2);
+        },
+        {"particlePositions"}
+    );
+}
+
+
+TEST_F(SolverRestartFallback, emptyLatestTimeFallsBackAndABadDictionaryStillStops)
+{
+    // An empty latest time directory (a viewer or a copy made it)
+    expectFallbackToTheTimeBefore
+    (
+        [](const fs::path& t) { fs::remove_all(t); fs::create_directory(t); },
+        {"no restart state"}
+    );
+    if (HasFailure()) return;
+    // A fault that is not the start state's stops as without the option
+    schemes_ += "notAnEntry 1;\n";
+    writeDictionaries();
+    const int status = runSolver("log.spemFoam.bad");
+    const std::string text = log("log.spemFoam.bad");
+    EXPECT_GT(status, 0) << text;
+    EXPECT_FALSE(contains(text, "Falling back")) << text;
+    EXPECT_TRUE(contains(text, "FATAL")) << text;
+}
+
+
+TEST_F(SolverRestartFallback, noEarlierTimeStopsWithTheCause)
+{
+    setControl("restartFallback", "yes");
+    setControl("writeControl", "runTime");
+    setControl("writeInterval", "0.01");
+    setControl("endTime", "0.01");
+    runExpectingSuccess();
+    if (HasFailure()) return;
+    // The only written time is damaged and time 0 has no state to read
+    // (the mesh is the case's initial state): 0 is the fallback
+    fs::remove(caseDir_/"0.01"/"spem"/"U");
+    setControl("endTime", "0.02");
+    writeDictionaries();
+    const int status = runSolver("log.spemFoam.restart");
+    const std::string text = log("log.spemFoam.restart");
+    EXPECT_EQ(status, 0) << text;
+    expectInLog(text, {"0.01/spem/U", "Falling back to time 0", "\nEnd"});
 }
 
 

@@ -23,11 +23,91 @@ Usage
 \*---------------------------------------------------------------------------*/
 
 #include "argList.H"
-#include "Time.H"
+#include "restartTime.H"
 #include "spemModel.H"
 #include "timeStepControl.H"
 
+#include <memory>
+
 using namespace Foam;
+
+namespace
+{
+    //- The case read at the start time or, under restartFallback, at the
+    //  latest earlier time whose state reads (see restartTime)
+    std::unique_ptr<spemModel> readCase(restartTime& runTime)
+    {
+        if (!runTime.fallback()) return std::make_unique<spemModel>(runTime);
+
+        const bool wasThrowing = FatalError.throwExceptions();
+        const bool wasIOThrowing = FatalIOError.throwExceptions();
+        const auto restore = [&]()
+        {
+            FatalError.throwExceptions(wasThrowing);
+            FatalIOError.throwExceptions(wasIOThrowing);
+        };
+        for (;;)
+        {
+            // The error of this attempt, if it is the start state's
+            std::unique_ptr<error> failure;
+            try
+            {
+                auto model = std::make_unique<spemModel>(runTime);
+                restore();
+                return model;
+            }
+            catch (IOerror& err)
+            {
+                if (!runTime.namesStartState(err))
+                {
+                    restore();
+                    err.throwExceptions(false);
+                    err.exit(1);
+                }
+                failure = std::make_unique<IOerror>(err);
+            }
+            catch (error& err)
+            {
+                if (!runTime.namesStartState(err))
+                {
+                    restore();
+                    err.throwExceptions(false);
+                    err.exit(1);
+                }
+                failure = std::make_unique<error>(err);
+            }
+            // The file and line of a reader's error (a truncated file)
+            std::string cause = failure->message();
+            if (const auto* io = dynamic_cast<const IOerror*>(failure.get()))
+            {
+                cause += "\n    file: " + io->ioFileName();
+                if (io->ioStartLineNumber() >= 0)
+                {
+                    cause +=
+                        " at line " + std::to_string(io->ioStartLineNumber());
+                }
+            }
+            instant previous;
+            if (!runTime.previousTime(previous))
+            {
+                restore();
+                FatalErrorInFunction
+                    << "restartFallback: the state of time "
+                    << runTime.timeName() << " cannot be read and no time"
+                    << " is before it:" << nl << cause.c_str()
+                    << exit(FatalError);
+            }
+            WarningInFunction
+                << "restartFallback: the state of time " << runTime.timeName()
+                << " cannot be read:" << nl << cause.c_str()
+                << nl << "    Falling back to time " << previous.name()
+                << " (the latest time before it). Time "
+                << runTime.timeName() << " is left as it is until this run"
+                << " writes it again." << nl << endl;
+            runTime.startFrom(previous);
+        }
+    }
+}
 
 int main(int argc, char *argv[])
 {
@@ -40,33 +120,41 @@ int main(int argc, char *argv[])
 
     #include "setRootCase.H"
     timeStepControl::checkBeforeTime(args.path());
-    #include "createTime.H"
+    Info<< "Create time\n" << endl;
+    restartTime runTime(Time::controlDictName, args);
 
     // controlDict first: a bad entry stops before the case is read
-    timeStepControl timeStep(runTime);
-    spemModel model(runTime);
+    auto timeStep = std::make_unique<timeStepControl>(runTime);
+    const scalar requestedStart = runTime.value();
+    const std::unique_ptr<spemModel> modelPtr = readCase(runTime);
+    spemModel& model = *modelPtr;
+    if (runTime.value() != requestedStart)
+    {
+        // It measures the write times from the start time
+        timeStep = std::make_unique<timeStepControl>(runTime);
+    }
 
     // Forces and stable step of the initial state; the initial state goes
     // to the ParaView series
     model.evaluate();
     model.write(runTime.timeIndex() == 0);
-    timeStep.check(model.stableDeltaT());
-    timeStep.reportStart(Info, model.stableDeltaT(), model.stableStepLimit());
-    if (!timeStep.withinMaxSteps(model.stableDeltaT()))
+    timeStep->check(model.stableDeltaT());
+    timeStep->reportStart(Info, model.stableDeltaT(), model.stableStepLimit());
+    if (!timeStep->withinMaxSteps(model.stableDeltaT()))
     {
-        timeStep.stopAtMaxSteps(model.stableDeltaT(), model.stableStepLimit());
+        timeStep->stopAtMaxSteps(model.stableDeltaT(), model.stableStepLimit());
     }
 
     Info<< "Starting time loop" << nl << endl;
 
     while (runTime.run())
     {
-        timeStep.setDeltaT(model.stableDeltaT());
+        timeStep->setDeltaT(model.stableDeltaT());
         // The description is made only to stop: nothing is allocated in
         // the loop
-        if (!timeStep.withinMaxSteps(model.stableDeltaT()))
+        if (!timeStep->withinMaxSteps(model.stableDeltaT()))
         {
-            timeStep.stopAtMaxSteps
+            timeStep->stopAtMaxSteps
             (
                 model.stableDeltaT(), model.stableStepLimit()
             );
@@ -76,17 +164,17 @@ int main(int argc, char *argv[])
         model.advance();
         model.evaluate();
         model.write();
-        timeStep.reportWallEstimate(Info);
+        timeStep->reportWallEstimate(Info);
 
-        if (timeStep.logTime())
+        if (timeStep->logTime())
         {
             Info<< "Time = " << runTime.timeName() << nl
                 << "deltaT = " << runTime.deltaTValue()
-                << ", Courant number = " << timeStep.courantNumber()
+                << ", Courant number = " << timeStep->courantNumber()
                 << ", step " << runTime.timeIndex() << nl;
             model.report(Info);
             Info<< nl;
-            timeStep.reportProgress(Info);
+            timeStep->reportProgress(Info);
             Info<< "ExecutionTime = " << runTime.elapsedCpuTime()
                 << " s  ClockTime = " << runTime.elapsedClockTime() << " s"
                 << nl << endl;

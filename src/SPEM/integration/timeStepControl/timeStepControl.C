@@ -45,7 +45,7 @@ void Foam::timeStepControl::checkControlDict() const
             "functions", "libs", "profiling", "cacheTemporaryObjects",
             "fileHandler", "DebugSwitches", "InfoSwitches",
             "OptimisationSwitches", "DimensionSets", "DimensionedConstants",
-            "Tolerances", "logInterval", "maxSteps"
+            "Tolerances", "logInterval", "maxSteps", "restartFallback"
         }
     );
 

@@ -99,7 +99,8 @@ void Foam::restartState::bad(const IOobject& io, const std::string& why) const
     FatalErrorInFunction
         << "Restart state " << io.objectPath() << ": " << why.c_str() << nl
         << "    Remove time " << runTime_.timeName()
-        << " to start from the time before it." << exit(FatalError);
+        << " to start from the time before it, or set restartFallback yes"
+        << " in controlDict." << exit(FatalError);
     std::abort();
 }
 
@@ -307,7 +308,8 @@ Foam::restartState::restartState(const Time& runTime)
             << ") has no restart state " << dir << ": its write was"
             << " interrupted, or no run wrote that time." << nl
             << "    Remove " << runTime.timePath() << " (or set startTime to"
-            << " a time that was written) to continue from an earlier time."
+            << " a time that was written, or restartFallback yes in"
+            << " controlDict) to continue from an earlier time."
             << exit(FatalIOError);
     }
     IOobject mIO(file(manifest));
@@ -318,6 +320,7 @@ Foam::restartState::restartState(const Time& runTime)
             << " (the list of its files): it was written by an earlier"
             << " version or edited by hand. Remove time "
             << runTime.timeName() << " to start from the time before it"
+            << " (or set restartFallback yes in controlDict)"
             << exit(FatalError);
     }
     startFiles_ = IOdictionary(mIO).get<wordList>("files");
