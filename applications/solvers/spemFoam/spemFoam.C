@@ -133,6 +133,7 @@ int main(int argc, char *argv[])
         // It measures the write times from the start time
         timeStep = std::make_unique<timeStepControl>(runTime);
     }
+    timeStep->checkCourantLimit(model.fluidWithSolid());
 
     // Forces and stable step of the initial state; the initial state goes
     // to the ParaView series
@@ -154,9 +155,11 @@ int main(int argc, char *argv[])
         // the loop
         if (!timeStep->withinMaxSteps(model.stableDeltaT()))
         {
+            // The state is good, only too slow to go on: written to look at
+            model.write(true);
             timeStep->stopAtMaxSteps
             (
-                model.stableDeltaT(), model.stableStepLimit()
+                model.stableDeltaT(), model.stableStepLimit(), true
             );
         }
         ++runTime;

@@ -433,7 +433,8 @@ Foam::spemModel::spemModel(Time& runTime)
     mesh_(triMesh::read(runTime)),
     bodies_(runTime),
     restart_(runTime),
-    lastWrittenTime_(-GREAT)
+    lastWrittenTime_(-GREAT),
+    fluidWithSolid_(false)
 {
     checkKeywords
     (
@@ -447,7 +448,14 @@ Foam::spemModel::spemModel(Time& runTime)
 
     PtrList<spemMaterial> materials = readMaterials();
     bool anyMaterial = false;
-    forAll(materials, r) anyMaterial = anyMaterial || materials.set(r);
+    bool anyFluid = false, anySolid = false;
+    forAll(materials, r)
+    {
+        anyMaterial = anyMaterial || materials.set(r);
+        if (!materials.set(r)) continue;
+        (materials[r].isFluid() ? anyFluid : anySolid) = true;
+    }
+    fluidWithSolid_ = anyFluid && anySolid;
     if (!anyMaterial)
     {
         FatalIOErrorInFunction(subDict("regions"))

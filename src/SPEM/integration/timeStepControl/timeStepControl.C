@@ -6,6 +6,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <sstream>
 
 namespace
 {
@@ -168,7 +169,8 @@ Foam::timeStepControl::timeStepControl(Time& runTime)
     stableDeltaT_(GREAT),
     wallStart_(std::chrono::steady_clock::now()),
     maxSteps_(runTime.controlDict().getOrDefault<scalar>("maxSteps", 1e7)),
-    loopStart_(wallStart_)
+    loopStart_(wallStart_),
+    startStableDeltaT_(0)
 {
     checkControlDict();
     const dictionary& controls = runTime.controlDict();
@@ -187,19 +189,37 @@ Foam::timeStepControl::timeStepControl(Time& runTime)
     }
     // Measured limits (issue 16, item 7): elements alone stay bounded up
     // to 1.33-1.64 on regular meshes (Stability.criticalCourantNumber);
-    // damBreakElasticPlate (elements, particles and an elastic plate)
-    // runs right at 1.2, goes wrong without stopping at 1.35 and 2 (the
-    // plate deflects 0.054 m before the water reaches it) and stops at
-    // 1.5 and 3; cylinderSinking runs at 2 and stops at 3
+    // the particles of a dam break to 1.5-1.75 (SphStability);
+    // cylinderSinking runs at 2 and stops at 3. A fluid with an elastic
+    // solid is refused above 1 by checkCourantLimit()
     if (maxCo_ > 1)
     {
         WarningInFunction
             << "maxCo " << maxCo_ << " > 1: the stable step estimates hold"
-            << " up to Courant number 1; measured, a scene with elements,"
-            << " particles and an elastic structure goes wrong without"
-            << " stopping from 1.35 (damBreakElasticPlate; stops at 1.5)"
-            << nl << endl;
+            << " up to Courant number 1; measured, elements alone blow up"
+            << " from 1.33, the particles of a dam break from 1.5" << nl
+            << endl;
     }
+}
+
+
+void Foam::timeStepControl::checkCourantLimit(const bool fluidWithSolid) const
+{
+    // damBreakElasticPlate (elements, particles and an elastic plate), nx
+    // 20 (tests/extremes): runs right at 1; at 1.5 and 2 it runs to the
+    // end wrong, moving the plate 6 and 0.7 mm before the water reaches it
+    // and throwing particles 3.6 m high; at 3 it blows up. Earlier at nx
+    // 40: right at 1.2, wrong at 1.35 and 2
+    if (!(maxCo_ > 1) || !fluidWithSolid) return;
+    FatalIOErrorInFunction(runTime_.controlDict())
+        << "maxCo " << maxCo_ << " in " << runTime_.controlDict().name()
+        << " is above 1 in a case with a fluid and an elastic solid: the"
+        << " stable step estimates hold up to Courant number 1, and such"
+        << " scenes go wrong above it without stopping (measured on"
+        << " damBreakElasticPlate: at 1.5 the plate moves 6 mm before the"
+        << " water reaches it and particles are thrown 3.6 m high)." << nl
+        << "    Set maxCo to 1 or below (0.9 is the default)."
+        << exit(FatalIOError);
 }
 
 
@@ -257,6 +277,7 @@ void Foam::timeStepControl::reportStart
 )
 {
     loopStart_ = std::chrono::steady_clock::now();
+    startStableDeltaT_ = stable;
     const scalar dt = stepFor(stable);
     const scalar remaining = runTime_.endTime().value() - runTime_.value();
     os  << "Time step: stable " << stable << " s at Courant number 1, set by "
@@ -279,11 +300,30 @@ bool Foam::timeStepControl::withinMaxSteps(const scalar stable) const
 void Foam::timeStepControl::stopAtMaxSteps
 (
     const scalar stable,
-    const std::string& limit
+    const std::string& limit,
+    const bool stateWritten
 ) const
 {
     const scalar dt = stepFor(stable);
     const label taken = runTime_.timeIndex() - runTime_.startTimeIndex();
+    std::ostringstream fallen;
+    if (taken > 0 && startStableDeltaT_ > 10*stable)
+    {
+        // A step that collapses in the run is a slow blow-up: an element
+        // crushed, or particles thrown faster and faster
+        fallen
+            << "    The stable step has fallen " << startStableDeltaT_/stable
+            << " times since the start (" << startStableDeltaT_
+            << " s): an element is crushed or the flow is accelerating"
+            << " without bound, usually a blow-up in slow motion or a"
+            << " material too soft or too stiff for the load." << nl;
+    }
+    if (stateWritten)
+    {
+        fallen
+            << "    The state at this time has been written to "
+            << runTime_.timePath() << " and VTK/." << nl;
+    }
     FatalIOErrorInFunction(runTime_.controlDict())
         << "At time " << runTime_.timeName() << " (" << taken
         << " steps taken) the step is " << dt << " s (stable " << stable
@@ -291,6 +331,7 @@ void Foam::timeStepControl::stopAtMaxSteps
         << "    endTime " << runTime_.endTime().value() << " needs about "
         << projectedSteps(dt) << " steps, more than maxSteps " << maxSteps_
         << " of " << runTime_.controlDict().name() << nl
+        << fallen.str().c_str()
         << "    Check the entries named above, or raise maxSteps if the run"
         << " is meant to take that many steps." << exit(FatalIOError);
     std::abort();

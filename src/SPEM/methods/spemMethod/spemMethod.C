@@ -475,7 +475,8 @@ Foam::spemMethod::spemMethod(const spemCase& c)
     elementFluid_(nullptr),
     fluidSpacing_(0),
     lastDeltaT_(0),
-    nOutsideToWarn_(0)
+    nOutsideToWarn_(0),
+    machToWarn_(0.1)
 {}
 
 
@@ -566,7 +567,11 @@ bool Foam::spemMethod::evaluate()
     {
         return fail(elements_->failure(), unstableHint);
     }
-    if (!particles_) return true;
+    if (!particles_)
+    {
+        checkFlowMach();
+        return true;
+    }
 
     structure_.clear();
     callHooks(&spemCoupling::beforeParticleEvaluate);
@@ -580,17 +585,29 @@ bool Foam::spemMethod::evaluate()
     }
     if (!particles_->evaluate())
     {
-        return fail
-        (
-            particles_->failure(),
-            particles_->failedLeavingTank()
-          ? "Particles leave the tank: close it with walls where they"
-            " cross, or set tank/leaving to remove (their mass is logged)"
-            " or warn in constant/spemProperties."
-          : unstableHint
-        );
+        // A particle that leaves faster than sound was thrown out by a
+        // blow-up, not carried out by the flow
+        const fastestFluid f = findFastestFluid();
+        std::string hint = unstableHint;
+        if (particles_->failedLeavingTank() && f.mach < 1)
+        {
+            hint =
+                "Particles leave the tank: close it with walls where they"
+                " cross, or set tank/leaving to remove (their mass is"
+                " logged) or warn in constant/spemProperties.";
+        }
+        else if (f.mach >= 1)
+        {
+            std::ostringstream os;
+            os  << "The fastest fluid particle moves at " << f.speed
+                << " m/s, above the sound speed c " << f.c << " m/s: the"
+                " step blew up. " << unstableHint;
+            hint = os.str();
+        }
+        return fail(particles_->failure(), hint);
     }
     reportParticlesOutside();
+    checkFlowMach();
 
     // The particles' forces on the elements are the external forces of
     // this evaluation: eq. (25) on the fluid elements' interface, eq. (27)
@@ -704,6 +721,74 @@ Foam::restartState::content Foam::spemMethod::state() const
       ? elements_->previousDeltaT()
       : particles_ ? particles_->previousDeltaT() : -1;
     return c;
+}
+
+
+Foam::spemMethod::fastestFluid Foam::spemMethod::findFastestFluid() const
+{
+    fastestFluid f;
+    if (particles_)
+    {
+        const sphFluid& p = *particles_;
+        const std::vector<scalar>& v = p.particles().velocities();
+        const std::vector<scalar>& x = p.particles().positions();
+        const std::vector<particleSet::kind>& kind = p.particles().kinds();
+        const scalar c = p.c();
+        for (label i = 0; i < label(kind.size()); ++i)
+        {
+            if (kind[i] != particleSet::kind::fluid) continue;
+            const scalar speed = std::hypot(v[2*i], v[2*i + 1]);
+            if (speed/c > f.mach)
+            {
+                f = {speed/c, speed, c, x[2*i], x[2*i + 1], true};
+            }
+        }
+    }
+    if (elements_)
+    {
+        const elementModel& em = *elements_;
+        const std::vector<scalar>& v = em.velocities();
+        const std::vector<scalar>& x = em.positions();
+        const std::vector<label>& nodes = em.elementNodes();
+        for (const elementModel::region& r : em.regions())
+        {
+            if (r.elemBegin == r.elemEnd) continue;
+            const label ri = &r - &em.regions()[0];
+            if (!em.hasMaterial(ri) || !em.material(ri).isFluid()) continue;
+            const scalar c = em.material(ri).waveSpeed();
+            for (label e = r.elemBegin; e < r.elemEnd; ++e)
+            {
+                for (label k = 0; k < 3; ++k)
+                {
+                    const label n = nodes[3*e + k];
+                    const scalar speed = std::hypot(v[2*n], v[2*n + 1]);
+                    if (speed/c > f.mach)
+                    {
+                        f = {speed/c, speed, c, x[2*n], x[2*n + 1], false};
+                    }
+                }
+            }
+        }
+    }
+    return f;
+}
+
+
+void Foam::spemMethod::checkFlowMach()
+{
+    if (machToWarn_ > 1) return;
+    const fastestFluid f = findFastestFluid();
+    if (f.mach <= machToWarn_) return;
+    WarningInFunction
+        << "Time = " << case_.runTime.timeName() << ": the flow reaches Mach "
+        << f.mach << ": a fluid " << (f.particle ? "particle" : "element node")
+        << " at (" << f.x << ' ' << f.y << ") moves at " << f.speed
+        << " m/s, above c/" << (machToWarn_ < 0.2 ? "10" : "3") << " (c "
+        << f.c << " m/s). The weakly compressible model's density errors"
+        << " grow as Ma^2 (" << 100*f.mach*f.mach << " % here): raise c"
+        << " (entry c of the fluid region) to about 10 times the fastest"
+        << " flow speed." << endl;
+    machToWarn_ = machToWarn_ < 0.2 ? 1.0/3 : 2;
 }
 
 

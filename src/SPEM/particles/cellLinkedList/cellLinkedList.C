@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <sstream>
 
 // * * * * * * * * * * * * * * * Local Functions * * * * * * * * * * * * * * //
 
@@ -45,25 +46,29 @@ std::size_t capacityBytes(const std::vector<Type>& v)
 
 // * * * * * * * * * * * * * Private Member Functions  * * * * * * * * * * * //
 
-void Foam::cellLinkedList::reportNonFinite(const particleSet& particles) const
+std::string Foam::cellLinkedList::nonFiniteMessage
+(
+    const particleSet& particles
+) const
 {
     const std::vector<scalar>& x = particles.positions();
     for (label i = 0; i < particles.size(); ++i)
     {
         if (!std::isfinite(x[2*i]) || !std::isfinite(x[2*i + 1]))
         {
-            FatalErrorInFunction
-                << "Particle " << i << " (id " << particles.id()[i]
+            std::ostringstream os;
+            os  << "Particle " << i << " (id " << particles.id()[i]
                 << ") has a non-finite position (" << x[2*i] << ' '
-                << x[2*i + 1] << "): the neighbour search cannot place it in"
-                << " a cell. The time step is probably unstable."
-                << exit(FatalError);
+                << x[2*i + 1] << "): the neighbour search cannot place it"
+                << " in a cell. The time step is probably unstable.";
+            return os.str();
         }
     }
+    return "a particle has a non-finite position";
 }
 
 
-void Foam::cellLinkedList::reportFarParticle
+std::string Foam::cellLinkedList::farParticleMessage
 (
     const particleSet& particles,
     const scalar nCells,
@@ -94,17 +99,19 @@ void Foam::cellLinkedList::reportFarParticle
         }
     }
 
-    FatalErrorInFunction
-        << "Particle " << far << " (id " << particles.id()[far]
-        << ") at (" << x[2*far] << ' ' << x[2*far + 1] << ") has flown away:"
+    std::ostringstream os;
+    os  << "Particle " << far << " (id " << particles.id()[far]
+        << ") at (" << x[2*far] << ' ' << x[2*far + 1] << ") with velocity ("
+        << particles.velocities()[2*far] << ' '
+        << particles.velocities()[2*far + 1] << ") has flown away:"
         << " it is " << farDist << " m from the median particle position ("
         << median[0] << ' ' << median[1] << ") and the grid of cells of size "
         << cellSize_ << " over the bounding box of the " << n
         << " particles would need " << nCells << " cells, more than the"
         << " limit of " << maxCells << " (" << maxCellsPerParticle_
         << " per particle + " << extraCells_ << "). The time step is"
-        << " probably unstable or the particle escaped through a wall."
-        << exit(FatalError);
+        << " probably unstable or the particle escaped through a wall.";
+    return os.str();
 }
 
 
@@ -163,6 +170,22 @@ void Foam::cellLinkedList::update
     const scalar cellSize
 )
 {
+    if (!tryUpdate(particles, cellSize))
+    {
+        FatalErrorInFunction
+            << "The neighbour search failed: " << failure_.c_str()
+            << exit(FatalError);
+    }
+}
+
+
+bool Foam::cellLinkedList::tryUpdate
+(
+    const particleSet& particles,
+    const scalar cellSize
+)
+{
+    failure_.clear();
     if (!(cellSize > 0) || !std::isfinite(cellSize))
     {
         FatalErrorInFunction
@@ -170,7 +193,7 @@ void Foam::cellLinkedList::update
             << exit(FatalError);
     }
 
-    sizeGrid(particles, cellSize);
+    if (!sizeGrid(particles, cellSize)) return false;
 
     const label n = particles.size();
     const label nCells = nx_*ny_;
@@ -182,10 +205,11 @@ void Foam::cellLinkedList::update
     sortByCell(n);
 
     nParticles_ = n;
+    return true;
 }
 
 
-void Foam::cellLinkedList::sizeGrid
+bool Foam::cellLinkedList::sizeGrid
 (
     const particleSet& particles,
     const scalar cellSize
@@ -219,7 +243,8 @@ void Foam::cellLinkedList::sizeGrid
     nParticles_ = 0;
     if (nNonFinite > 0)
     {
-        reportNonFinite(particles);
+        failure_ = nonFiniteMessage(particles);
+        return false;
     }
     if (n == 0)
     {
@@ -238,7 +263,8 @@ void Foam::cellLinkedList::sizeGrid
         scalar(maxCellsPerParticle_)*n + scalar(extraCells_);
     if (!(nxReal*nyReal <= maxCells))
     {
-        reportFarParticle(particles, nxReal*nyReal, maxCells);
+        failure_ = farParticleMessage(particles, nxReal*nyReal, maxCells);
+        return false;
     }
 
     x0_ = xMin;
@@ -246,6 +272,7 @@ void Foam::cellLinkedList::sizeGrid
     nx_ = label(nxReal);
     ny_ = label(nyReal);
     hMax_ = hMax;
+    return true;
 }
 
 

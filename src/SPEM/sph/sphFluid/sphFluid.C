@@ -440,6 +440,10 @@ bool Foam::sphFluid::checkParticles()
     const scalar* rho = particles_.density().data();
     const particleSet::kind* kind = particles_.kinds().data();
     const tankBoundary* tank = tank_;
+    // A weakly compressible fluid never flows faster than sound: a fluid
+    // particle at Mach 1 was thrown by a blow-up (caught here before it
+    // flies far enough to blow up the neighbour search's grid)
+    const scalar c2 = c_*c_;
     label bad = -1, outside = -1, nOutside = 0;
     nRemovedLast_ = 0;
     removedMassLast_ = 0;
@@ -453,7 +457,11 @@ bool Foam::sphFluid::checkParticles()
             std::isfinite(v[2*i]) && std::isfinite(v[2*i + 1])
          && std::isfinite(rho[i]) && rho[i] > 0
          && x[2*i] >= boxMin_[0] && x[2*i] <= boxMax_[0]
-         && x[2*i + 1] >= boxMin_[1] && x[2*i + 1] <= boxMax_[1];
+         && x[2*i + 1] >= boxMin_[1] && x[2*i + 1] <= boxMax_[1]
+         && (
+                kind[i] != particleSet::kind::fluid
+             || v[2*i]*v[2*i] + v[2*i + 1]*v[2*i + 1] < c2
+            );
         if (!ok) bad = std::max(bad, i);
         if
         (
@@ -519,6 +527,12 @@ bool Foam::sphFluid::checkParticles()
     if (!(rho[bad] > 0) || !std::isfinite(v[2*bad]) || !std::isfinite(v[2*bad+1]))
     {
         os  << " is not finite or has a non-positive density";
+    }
+    else if (std::hypot(v[2*bad], v[2*bad + 1]) >= c_)
+    {
+        os  << " moves at " << std::hypot(v[2*bad], v[2*bad + 1])
+            << " m/s, faster than sound (c " << c_ << " m/s): the step"
+            << " blew up";
     }
     else
     {
@@ -920,7 +934,11 @@ bool Foam::sphFluid::evaluate()
     if (!checkParticles()) return false;
 
     const scalar kappa = kernel_->support();
-    cells_.update(particles_, kappa*particles_.maxSmoothingLength());
+    if (!cells_.tryUpdate(particles_, kappa*particles_.maxSmoothingLength()))
+    {
+        failure_ = cells_.failure();
+        return false;
+    }
     lastSortOrder_.clear();
     if (++stepsSinceReorder_ >= reorderInterval)
     {
