@@ -1,0 +1,174 @@
+"""Error measures of spemStudy: one function per tutorial, against the
+published or analytical data of its referenceData/, and a generic one
+against the finest run of the study.
+
+Each measure takes the run's case folder (and, for 'finest', the finest
+run's) and returns (error, unit, what): error is a non-negative number,
+None if the run has no data to measure it.
+
+    surgeFront      damBreak: largest |relative error| of the surge front
+                    against Martin & Moyce (1952), Z < L/a, nondimensional
+                    as in the tutorial's plot.py
+    plateTip        damBreakElasticPlate: RMS of the horizontal tip
+                    displacement minus Ryzhakov et al. (2010) at its times
+    midSpan         hydrostaticElasticPlate: |relative error| of the
+                    mid-span deflection (mean of the last 10 % of the run)
+                    against Euler-Bernoulli plate theory
+    finest          any case: RMS difference of the first column of the
+                    first function object in postProcessing/ from the
+                    finest run's, over the times both cover, relative to
+                    the RMS of the finest run's (0 for the finest itself)
+"""
+
+import math
+import os
+
+
+def readTable(path):
+    """Rows of floats of a '#'-commented table ('(x y z)' vectors split)."""
+    rows = []
+    with open(path) as f:
+        for line in f:
+            if not line.strip() or line.lstrip().startswith("#"):
+                continue
+            words = line.replace("(", " ").replace(")", " ").split()
+            try:
+                rows.append([float(w) for w in words])
+            except ValueError:
+                continue
+    return rows
+
+
+def functionObjectRows(caseDir, name):
+    """Rows of postProcessing/<name>/<start>/*.dat of every start time,
+    sorted by time, a restart's rows replacing the earlier ones."""
+    base = os.path.join(caseDir, "postProcessing", name)
+    if not os.path.isdir(base):
+        return []
+    rows = []
+    for start in sorted(os.listdir(base), key=float):
+        folder = os.path.join(base, start)
+        for fileName in sorted(os.listdir(folder)):
+            if fileName.endswith(".dat"):
+                t0 = float(start)
+                rows = [r for r in rows if r[0] < t0]
+                rows += readTable(os.path.join(folder, fileName))
+                break
+    return sorted(rows)
+
+
+def interpolate(x, xs, ys):
+    """Linear interpolation of (xs, ys) at x, xs ascending."""
+    if x <= xs[0]:
+        return ys[0]
+    if x >= xs[-1]:
+        return ys[-1]
+    lo, hi = 0, len(xs) - 1
+    while hi - lo > 1:
+        mid = (lo + hi)//2
+        if xs[mid] <= x:
+            lo = mid
+        else:
+            hi = mid
+    w = (x - xs[lo])/(xs[hi] - xs[lo]) if xs[hi] > xs[lo] else 0.0
+    return ys[lo] + w*(ys[hi] - ys[lo])
+
+
+def referencePath(caseDir, fileName):
+    """referenceData/<fileName> of the case (the study's copy links it)."""
+    return os.path.join(caseDir, "referenceData", fileName)
+
+
+def surgeFront(caseDir, finestDir=None, a=0.146, g=9.81, L=0.584):
+    rows = functionObjectRows(caseDir, "surgeFront")
+    data = readTable(referencePath(caseDir, "MartinMoyce1952_surgeFront.dat"))
+    if not rows or not data:
+        return None, "", "surge front vs Martin & Moyce (1952)"
+    T = [r[0]*math.sqrt(2*g/a) for r in rows]
+    Z = [r[1]/a for r in rows]
+    worst = None
+    for Te, Ze in ((d[0], d[1]) for d in data):
+        if Ze >= L/a or Te < T[0] or Te > T[-1]:
+            continue
+        error = abs(interpolate(Te, T, Z) - Ze)/Ze
+        worst = error if worst is None else max(worst, error)
+    return worst, "", "largest relative error of the surge front vs " \
+        "Martin & Moyce (1952)"
+
+
+def plateTip(caseDir, finestDir=None):
+    rows = functionObjectRows(caseDir, "plateTip")
+    data = readTable(referencePath(caseDir, "Ryzhakov2010_tipDisplacement.dat"))
+    if not rows or not data:
+        return None, "m", "tip displacement vs Ryzhakov et al. (2010)"
+    t = [r[0] for r in rows]
+    dx = [r[1] for r in rows]
+    inside = [d for d in data if t[0] <= d[0] <= t[-1]]
+    if not inside:
+        return None, "m", "tip displacement vs Ryzhakov et al. (2010)"
+    s = sum((interpolate(d[0], t, dx) - d[1])**2 for d in inside)
+    return math.sqrt(s/len(inside)), "m", \
+        "RMS of the tip displacement minus Ryzhakov et al. (2010)"
+
+
+def midSpan(caseDir, finestDir=None, averagedFraction=0.1):
+    rows = functionObjectRows(caseDir, "midSpan")
+    reference = {}
+    path = referencePath(caseDir, "midSpanDeflection.dat")
+    if os.path.isfile(path):
+        with open(path) as f:
+            for line in f:
+                words = line.split()
+                if len(words) >= 2 and not words[0].startswith("#"):
+                    reference[words[0]] = float(words[1])
+    if not rows or "Dy_EulerBernoulli" not in reference:
+        return None, "", "mid-span deflection vs plate theory"
+    tStart = rows[-1][0] - averagedFraction*(rows[-1][0] - rows[0][0])
+    last = [r[2] for r in rows if r[0] >= tStart]
+    dy = sum(last)/len(last)
+    ref = reference["Dy_EulerBernoulli"]
+    return abs(dy - ref)/abs(ref), "", \
+        "relative error of the mid-span deflection vs Euler-Bernoulli"
+
+
+def firstCurve(caseDir):
+    """(name, times, values) of the first function object's first column."""
+    base = os.path.join(caseDir, "postProcessing")
+    if not os.path.isdir(base):
+        return None, [], []
+    for name in sorted(os.listdir(base)):
+        rows = functionObjectRows(caseDir, name)
+        if rows and len(rows[0]) >= 2:
+            return name, [r[0] for r in rows], [r[1] for r in rows]
+    return None, [], []
+
+
+def finest(caseDir, finestDir):
+    name, t, y = firstCurve(caseDir)
+    nameF, tF, yF = firstCurve(finestDir)
+    what = "RMS difference from the finest run (%s), relative" % nameF
+    if name is None or nameF is None or name != nameF:
+        return None, "", what
+    common = [(ti, yi) for ti, yi in zip(tF, yF) if t[0] <= ti <= t[-1]]
+    if not common:
+        return None, "", what
+    diff = sum((interpolate(ti, t, y) - yi)**2 for ti, yi in common)
+    norm = sum(yi**2 for ti, yi in common)
+    if norm == 0:
+        return (0.0 if diff == 0 else None), "", what
+    return math.sqrt(diff/norm), "", what
+
+
+measures = {
+    "surgeFront": surgeFront,
+    "plateTip": plateTip,
+    "midSpan": midSpan,
+    "finest": finest,
+}
+
+#- The measure of each tutorial when spemStudyDict names none
+tutorialMeasures = {
+    "damBreak": "surgeFront",
+    "damBreakElasticPlate": "plateTip",
+    "hydrostaticElasticPlate": "midSpan",
+}
