@@ -48,13 +48,29 @@ std::vector<std::map<std::string, std::string>> readCsv(const fs::path& file)
     std::string line;
     std::vector<std::string> header;
     std::vector<std::map<std::string, std::string>> rows;
+    // Cells split at commas outside double quotes ("" is a quote)
     auto split = [](const std::string& l)
     {
-        std::vector<std::string> cells;
-        std::stringstream ss(l);
-        std::string cell;
-        while (std::getline(ss, cell, ',')) cells.push_back(cell);
-        if (!l.empty() && l.back() == ',') cells.push_back("");
+        std::vector<std::string> cells(1);
+        bool quoted = false;
+        for (std::size_t i = 0; i < l.size(); ++i)
+        {
+            const char c = l[i];
+            if (c == '"')
+            {
+                if (quoted && i + 1 < l.size() && l[i + 1] == '"')
+                {
+                    cells.back() += '"';
+                    ++i;
+                }
+                else
+                {
+                    quoted = !quoted;
+                }
+            }
+            else if (c == ',' && !quoted) cells.emplace_back();
+            else if (c != '\r') cells.back() += c;
+        }
         return cells;
     };
     if (std::getline(is, line)) header = split(line);
@@ -176,6 +192,41 @@ TEST(SpemStudy, twoRunStudyWritesTheRunsOwnNumbersAndResumes)
     (
         fs::last_write_time(caseDir/"study"/"SPH_nx5"/"result.json"), stamp
     );
+    if (!HasFailure()) fs::remove_all(root);
+}
+
+
+TEST(SpemStudy, stabilityMapRecordsWhichRunsEndAndWhichStopWithWhatMessage)
+{
+    const fs::path root = newFolder("spemStudyMap");
+    ASSERT_FALSE(root.empty());
+    const fs::path caseDir = tutorialCases::copyTutorial
+    (
+        "damBreak", (root.filename()/"damBreak").string()
+    );
+    testFiles::replaceEntry(caseDir/"system"/"blockMeshDict", "nx", "5");
+    std::ofstream(caseDir/"system"/"spemStudyDict")
+        << "FoamFile { version 2.0; format ascii; class dictionary;"
+           " object spemStudyDict; }\n"
+           "endTime     0.4;\n"
+           "error       finest;\n"
+           "parameter { file system/controlDict; entry maxCo; values (1 20); }\n";
+    ASSERT_EQ(runIn(caseDir, python + " " + spemStudy, "log.spemStudy"), 0)
+        << readText(caseDir/"log.spemStudy");
+    const auto rows = readCsv(caseDir/"study"/"trade.csv");
+    ASSERT_EQ(rows.size(), 2u);
+    EXPECT_EQ(rows[0].at("name"), "maxCo_1");
+    EXPECT_EQ(rows[0].at("ranToEnd"), "True");
+    EXPECT_EQ(rows[0].at("silentFailure"), "");
+    EXPECT_EQ(rows[1].at("name"), "maxCo_20");
+    EXPECT_EQ(rows[1].at("ranToEnd"), "False");
+    EXPECT_EQ(rows[1].at("failedIn"), "spemFoam");
+    // The solver's own first line of the stop
+    const std::string log = readText(caseDir/"study"/"maxCo_20"/"log.spemFoam");
+    EXPECT_NE(log.find(rows[1].at("message")), std::string::npos)
+        << rows[1].at("message");
+    EXPECT_NE(rows[1].at("message").find("Run stopped"), std::string::npos)
+        << rows[1].at("message");
     if (!HasFailure()) fs::remove_all(root);
 }
 

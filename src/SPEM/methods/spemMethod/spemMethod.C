@@ -592,9 +592,12 @@ bool Foam::spemMethod::evaluate()
         if (particles_->failedLeavingTank() && f.mach < 1)
         {
             hint =
-                "Particles leave the tank: close it with walls where they"
-                " cross, or set tank/leaving to remove (their mass is"
-                " logged) or warn in constant/spemProperties.";
+                "Particles leave the tank: if the flow splashes out, close"
+                " it with walls where they cross, or set tank/leaving to"
+                " remove (their mass is logged) or warn in"
+                " constant/spemProperties; if they were thrown out (a"
+                " blow-up: maxCo above 1, or a jump in the log's forces),"
+                " reduce maxCo or deltaT.";
         }
         else if (f.mach >= 1)
         {
