@@ -476,7 +476,8 @@ Foam::spemMethod::spemMethod(const spemCase& c)
     fluidSpacing_(0),
     lastDeltaT_(0),
     nOutsideToWarn_(0),
-    machToWarn_(0.1)
+    machToWarn_(0.1),
+    evaluationsSinceMachCheck_(machCheckInterval - 1)
 {}
 
 
@@ -753,10 +754,10 @@ Foam::spemMethod::fastestFluid Foam::spemMethod::findFastestFluid() const
         const std::vector<scalar>& v = em.velocities();
         const std::vector<scalar>& x = em.positions();
         const std::vector<label>& nodes = em.elementNodes();
-        for (const elementModel::region& r : em.regions())
+        forAll(em.regions(), ri)
         {
+            const elementModel::region& r = em.regions()[ri];
             if (r.elemBegin == r.elemEnd) continue;
-            const label ri = &r - &em.regions()[0];
             if (!em.hasMaterial(ri) || !em.material(ri).isFluid()) continue;
             const scalar c = em.material(ri).waveSpeed();
             for (label e = r.elemBegin; e < r.elemEnd; ++e)
@@ -779,7 +780,13 @@ Foam::spemMethod::fastestFluid Foam::spemMethod::findFastestFluid() const
 
 void Foam::spemMethod::checkFlowMach()
 {
-    if (machToWarn_ > 1) return;
+    // Every machCheckInterval evaluations: the fastest speed changes over
+    // many steps, and the search visits every fluid particle and node
+    if (machToWarn_ > 1 || ++evaluationsSinceMachCheck_ < machCheckInterval)
+    {
+        return;
+    }
+    evaluationsSinceMachCheck_ = 0;
     const fastestFluid f = findFastestFluid();
     if (f.mach <= machToWarn_) return;
     WarningInFunction
