@@ -1089,6 +1089,7 @@ protected:
             "conversion\n{\n    criterion       none;\n}\n";
         setControl("adjustTimeStep", "yes");
         setControl("maxCo", "3");
+        setControl("allowMaxCoAbove1", "yes");
         setControl("deltaT", "1e-4");
         setControl("endTime", "1");
         setControl("writeInterval", writeInterval);
@@ -2665,6 +2666,23 @@ TEST_F(Solver, unknownKernelStopsListingKernels)
 }
 
 
+TEST_F(Solver, maxCoAboveOneIsRefusedUnlessAllowed)
+{
+    // Above 1 runs go wrong without stopping (tests/extremes, doc/stability)
+    useSPH();
+    setControl("adjustTimeStep", "yes");
+    setControl("maxCo", "1.5");
+    const std::string text = runExpectingFatalError();
+    expectInLog(text, {"FATAL IO ERROR", "maxCo 1.5", "above 1", "allowMaxCoAbove1"});
+    EXPECT_FALSE(contains(text, "Starting time loop")) << text;
+
+    setControl("allowMaxCoAbove1", "yes");
+    setControl("endTime", "0.01");
+    const std::string allowed = runExpectingSuccess();
+    expectInLog(allowed, {"maxCo 1.5 > 1", "\nEnd"});
+}
+
+
 TEST_F(Solver, sphBlowUpWritesLastGoodStateAndStops)
 {
     // maxCo far above the acoustic limit of the explicit scheme: the
@@ -2674,6 +2692,7 @@ TEST_F(Solver, sphBlowUpWritesLastGoodStateAndStops)
     useSPH();
     setControl("adjustTimeStep", "yes");
     setControl("maxCo", "20");
+    setControl("allowMaxCoAbove1", "yes");
     setControl("endTime", "1");
     setControl("writeInterval", "100000");
     const std::string text = runExpectingFatalError();

@@ -205,6 +205,9 @@ TEST(SpemStudy, stabilityMapRecordsWhichRunsEndAndWhichStopWithWhatMessage)
         "damBreak", (root.filename()/"damBreak").string()
     );
     testFiles::replaceEntry(caseDir/"system"/"blockMeshDict", "nx", "5");
+    // maxCo 20 to blow up in the run, not to be refused at the start
+    std::ofstream(caseDir/"system"/"controlDict", std::ios::app)
+        << "\nallowMaxCoAbove1 yes;\n";
     std::ofstream(caseDir/"system"/"spemStudyDict")
         << "FoamFile { version 2.0; format ascii; class dictionary;"
            " object spemStudyDict; }\n"

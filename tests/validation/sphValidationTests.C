@@ -412,6 +412,8 @@ TEST(SphStability, damBreakStableBelowCriticalCourantNumberStopsCleanlyAbove)
         replaceEntry(caseDir/"system/controlDict", "endTime", "0.5");
         replaceEntry(caseDir/"system/controlDict", "writeInterval", "0.1");
         replaceEntry(caseDir/"system/controlDict", "maxCo", std::to_string(co));
+        std::ofstream(caseDir/"system/controlDict", std::ios::app)
+            << "\nallowMaxCoAbove1 yes;\n";
         const std::string run = "cd '" + caseDir.string() + "' && ";
         ASSERT_EQ(std::system((run + "blockMesh > log.blockMesh 2>&1").c_str()), 0);
         ASSERT_EQ(std::system((run + SPEM_MESH_CONVERT + " > log.convert 2>&1").c_str()), 0);

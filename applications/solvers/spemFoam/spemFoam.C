@@ -133,7 +133,6 @@ int main(int argc, char *argv[])
         // It measures the write times from the start time
         timeStep = std::make_unique<timeStepControl>(runTime);
     }
-    timeStep->checkCourantLimit(model.fluidWithSolid());
 
     // Forces and stable step of the initial state; the initial state goes
     // to the ParaView series

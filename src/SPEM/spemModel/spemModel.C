@@ -433,8 +433,7 @@ Foam::spemModel::spemModel(Time& runTime)
     mesh_(triMesh::read(runTime)),
     bodies_(runTime),
     restart_(runTime),
-    lastWrittenTime_(-GREAT),
-    fluidWithSolid_(false)
+    lastWrittenTime_(-GREAT)
 {
     checkKeywords
     (
@@ -448,14 +447,7 @@ Foam::spemModel::spemModel(Time& runTime)
 
     PtrList<spemMaterial> materials = readMaterials();
     bool anyMaterial = false;
-    bool anyFluid = false, anySolid = false;
-    forAll(materials, r)
-    {
-        anyMaterial = anyMaterial || materials.set(r);
-        if (!materials.set(r)) continue;
-        (materials[r].isFluid() ? anyFluid : anySolid) = true;
-    }
-    fluidWithSolid_ = anyFluid && anySolid;
+    forAll(materials, r) anyMaterial = anyMaterial || materials.set(r);
     if (!anyMaterial)
     {
         FatalIOErrorInFunction(subDict("regions"))
