@@ -475,6 +475,7 @@ Foam::spemMethod::spemMethod(const spemCase& c)
     elementFluid_(nullptr),
     fluidSpacing_(0),
     lastDeltaT_(0),
+    particlesAdvanced_(false),
     nOutsideToWarn_(0)
 {}
 
@@ -512,6 +513,7 @@ void Foam::spemMethod::setUpWalls()
 
 bool Foam::spemMethod::advance(const scalar dt)
 {
+    particlesAdvanced_ = false;
     callHooks(&spemCoupling::beforeElementAdvance);
     if (elements_ && !elements_->advance(dt))
     {
@@ -522,6 +524,7 @@ bool Foam::spemMethod::advance(const scalar dt)
         return fail(contact_->failure(), unstableHint);
     }
     callHooks(&spemCoupling::afterElementAdvance);
+    particlesAdvanced_ = bool(particles_);
     if (particles_ && !particles_->advance(dt))
     {
         return fail(particles_->failure(), unstableHint);
@@ -603,8 +606,11 @@ bool Foam::spemMethod::evaluate()
 
 void Foam::spemMethod::revertToLastGood()
 {
+    // Each half's state before the last advance() (the elements always
+    // advance first)
     if (elements_) elements_->revert();
-    if (particles_) particles_->revert();
+    if (particles_ && particlesAdvanced_) particles_->revert();
+    particlesAdvanced_ = false;
     // Stresses and pressures of the good state for the output (it
     // evaluated before)
     if (elements_) elements_->evaluate();
