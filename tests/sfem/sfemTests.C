@@ -1,10 +1,10 @@
 /*---------------------------------------------------------------------------*\
 Description
     Unit tests of the element half (ES-FEM, paper sect. 2.1): the patch
-    test on an irregular mesh, lumped masses, the stable time step of a
-    deformed solid, and the stress of each constitutive model for a known
-    deformation, in plane strain and plane stress, with its tangent wave
-    speed.
+    test on an irregular mesh, lumped masses, a conversion undone after a
+    failed step, the stable time step of a deformed solid, and the stress
+    of each constitutive model for a known deformation, in plane strain
+    and plane stress, with its tangent wave speed.
 
 \*---------------------------------------------------------------------------*/
 
@@ -200,6 +200,68 @@ TEST(ESFEM, nodalMassesSumToRegionMasses)
 
     // Interface edges give one domain per side: 10 extra domains
     EXPECT_EQ(em->nDomains(), mesh.nEdges() + 10);
+}
+
+
+TEST(ESFEM, restoreTrianglesAfterARevertGivesBackTheModelBeforeTheRemoval)
+{
+    // A step that converts the elements round a corner node (leaving it
+    // without elements) and fails: revert() and restoreTriangles() give
+    // the model of the step before, bit for bit, the corner's velocity too
+    const triMesh mesh = testMeshes::build({{0, 1, 0, 0.5, 6, 3, "water"}});
+    auto em = testModels::model(mesh, {{"water", testModels::water}});
+    const scalar G[4] = {0.1, 0.3, -0.2, 0.05}, b[2] = {0.4, -0.1};
+    em->setVelocity(linearField(mesh.points(), G, b));
+    ASSERT_TRUE(em->evaluate());
+    ASSERT_TRUE(em->advance(1e-4));
+    ASSERT_TRUE(em->evaluate());
+
+    // What the model is and holds before the failing step
+    const std::vector<label> triangle = em->elementTriangle();
+    const std::vector<label> nodes = em->elementNodes();
+    const std::vector<label> domains = em->elementDomains();
+    const std::vector<label> nodeElements = em->nodeElements();
+    const std::vector<scalar> elementMass = em->elementMass();
+    const std::vector<scalar> nodeMass = em->nodeMass();
+    const std::vector<scalar> domainMass = em->domainMass();
+    const std::vector<scalar> domainArea = em->domainArea();
+    const std::vector<scalar> x = em->positions();
+    const std::vector<scalar> v = em->velocities();
+    const std::vector<scalar> f = em->nodalForces();
+
+    // The triangles of node 0 (a corner)
+    std::vector<label> corner;
+    for (label t = 0; t < mesh.nTriangles(); ++t)
+    {
+        for (label a = 0; a < 3; ++a)
+        {
+            if (mesh.triangles()[3*t + a] == 0) corner.push_back(t);
+        }
+    }
+    ASSERT_FALSE(corner.empty());
+    ASSERT_NE(v[0], 0);
+
+    ASSERT_TRUE(em->advance(1e-4));
+    em->removeTriangles(mesh, corner);
+    EXPECT_EQ(em->nodeMass()[0], 0);
+    EXPECT_EQ(em->velocities()[0], 0);
+    EXPECT_EQ(em->nElements(), label(triangle.size() - corner.size()));
+    em->revert();
+    em->restoreTriangles(mesh, corner);
+    ASSERT_TRUE(em->evaluate());
+
+    EXPECT_EQ(em->elementTriangle(), triangle);
+    EXPECT_EQ(em->elementNodes(), nodes);
+    EXPECT_EQ(em->elementDomains(), domains);
+    EXPECT_EQ(em->nodeElements(), nodeElements);
+    EXPECT_EQ(em->elementMass(), elementMass);
+    EXPECT_EQ(em->nodeMass(), nodeMass);
+    EXPECT_EQ(em->domainMass(), domainMass);
+    EXPECT_EQ(em->domainArea(), domainArea);
+    EXPECT_EQ(em->positions(), x);
+    EXPECT_EQ(em->velocities(), v);
+    EXPECT_EQ(em->nodalForces(), f);
+    for (const label t : corner) EXPECT_FALSE(em->removed(t));
 }
 
 

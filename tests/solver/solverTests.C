@@ -18,6 +18,10 @@ Description
                            non-zero exit status and no "End"; a blow-up
                            stops with the last good state written; the
                            output files and the log
+    SolverRollback.*       a step that converts and fails (run in this
+                           process, a NaN injected): the last good state,
+                           in memory and written, is the previous step's,
+                           elements, particles and mass, and restarts
     SolverRestart.*        a run continued from its latest time ends in
                            the same state as a continuous run
     SolverSettledColumn.*  the column settled by damping: hydrostatic
@@ -41,7 +45,11 @@ Description
 #include "Time.H"
 #include "vectorIOField.H"
 #include "scalarIOField.H"
+#include "labelIOList.H"
 #include "triMesh.H"
+#include "spemModel.H"
+#include "elementModel.H"
+#include "sphFluid.H"
 #include "testMeshes.H"
 
 #include "testFiles.H"
@@ -51,12 +59,14 @@ Description
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
 #include <functional>
 #include <initializer_list>
 #include <limits>
+#include <map>
 #include <regex>
 #include <sstream>
 #include <string>
@@ -1170,6 +1180,593 @@ TEST_F(SolverBlowUp, lastGoodStateAtWriteTimeIsListedOnce)
             << "times not increasing (listed twice?) in\n"
             << readText(pvd());
     }
+}
+
+
+// * * * * * * * * * * * * * * * * Rollback  * * * * * * * * * * * * * * * * //
+
+//- Fixture: the column run in this process, step by step as spemFoam runs
+//  it, so that one step can be made to convert and then fail: after its
+//  advance() a fluid element is squashed (one node moved most of the way
+//  to the midpoint of the opposite side: its smallest angle falls to about
+//  11 deg, below minInteriorAngle 30) and that node's velocity set to NaN.
+//  The evaluation converts the element's group, the particle made from it
+//  carries the NaN, the interface velocity correction (eq. 26) hands it
+//  to the elements next to the new particles, and the step fails there
+//  ("an element ... is inverted or degenerate"): its last good state is
+//  the previous step's, which must be written with the elements and the
+//  particles it had, not with those of the failed conversion.
+class SolverRollback : public Solver
+{
+protected:
+
+    //- What a state holds, for comparing states exactly
+    struct modelState
+    {
+        Foam::label nElements = 0, nParticles = 0;
+        //- Mesh triangles not in the model (sorted): converted to
+        //  particles, or inside a rigid body at t = 0
+        std::vector<Foam::label> removed;
+        //- Elements' and particles' mass [kg/m]
+        double elementMass = 0, particleMass = 0;
+        //- Mass of the element of each mesh triangle (of the model)
+        std::map<Foam::label, double> triangleMass;
+        //- Node positions and velocities (2 per node)
+        std::vector<double> x, U;
+        //- Particle positions, sorted (x, y) pairs
+        std::vector<std::pair<double, double>> particleX;
+    };
+
+    //- Captures what the model prints (Info) while it runs in this process
+    struct captureOutput
+    {
+        std::ostringstream text;
+        std::streambuf* old;
+        captureOutput() : old(std::cout.rdbuf(text.rdbuf())) {}
+        ~captureOutput() { std::cout.rdbuf(old); }
+    };
+
+    //- Sum of masses in a fixed order (sorted), so that the same particles
+    //  in another storage order give the same bits
+    static double sortedSum(std::vector<double> m)
+    {
+        std::sort(m.begin(), m.end());
+        double sum = 0;
+        for (const double mi : m) sum += mi;
+        return sum;
+    }
+
+    static modelState stateOf(const Foam::spemModel& model)
+    {
+        modelState s;
+        const Foam::elementModel& em = model.elements();
+        s.nElements = em.nElements();
+        for (Foam::label t = 0; t < model.mesh().nTriangles(); ++t)
+        {
+            if (em.removed(t)) s.removed.push_back(t);
+        }
+        s.elementMass = sortedSum(em.elementMass());
+        for (Foam::label el = 0; el < em.nElements(); ++el)
+        {
+            s.triangleMass[em.elementTriangle()[el]] = em.elementMass()[el];
+        }
+        s.x = em.positions();
+        s.U = em.velocities();
+        if (model.hasParticles())
+        {
+            const Foam::sphFluid& sph = model.particles();
+            const Foam::particleSet& ps = sph.particles();
+            std::vector<double> m;
+            for (Foam::label i = 0; i < ps.size(); ++i)
+            {
+                if (ps.kinds()[i] != Foam::particleSet::kind::fluid) continue;
+                m.push_back(ps.mass()[i]);
+                s.particleX.emplace_back
+                (
+                    ps.positions()[2*i], ps.positions()[2*i + 1]
+                );
+            }
+            s.nParticles = sph.nFluid();
+            EXPECT_EQ(s.nParticles, Foam::label(m.size()));
+            s.particleMass = sortedSum(m);
+            std::sort(s.particleX.begin(), s.particleX.end());
+        }
+        return s;
+    }
+
+    //- A label list of the state written at timeName (empty if absent)
+    std::vector<Foam::label> writtenLabels
+    (
+        const std::string& timeName,
+        const std::string& name
+    ) const
+    {
+        std::vector<Foam::label> labels;
+        if (!fs::exists(caseDir_/timeName/"spem"/name)) return labels;
+        Foam::Time runTime
+        (
+            Foam::Time::controlDictName,
+            Foam::fileName(caseDir_.parent_path().string()),
+            Foam::fileName(caseName)
+        );
+        const Foam::labelIOList list
+        (
+            Foam::IOobject
+            (
+                name, Foam::fileName(timeName), "spem", runTime,
+                Foam::IOobject::MUST_READ, Foam::IOobject::NO_WRITE, false
+            )
+        );
+        labels.assign(list.begin(), list.end());
+        return labels;
+    }
+
+    //- The mesh triangles converted in the state written at timeName
+    //  (sorted)
+    std::vector<Foam::label> writtenConversions
+    (
+        const std::string& timeName
+    ) const
+    {
+        std::vector<Foam::label> converted =
+            writtenLabels(timeName, "convertedTriangles");
+        std::sort(converted.begin(), converted.end());
+        return converted;
+    }
+
+    //- The state written to <case>/<timeName>/spem. It lists the converted
+    //  triangles (not those inside bodies, insideBodies) and not the
+    //  elements' masses: those of the mesh triangles not removed, from
+    //  model's elements (the elements of the last good state); NaN if a
+    //  triangle that model has not is not removed
+    modelState writtenState
+    (
+        const std::string& timeName,
+        const std::vector<Foam::label>& insideBodies,
+        const modelState& model
+    ) const
+    {
+        modelState s;
+        const fs::path dir = caseDir_/timeName/"spem";
+        const Foam::vectorField points = readState(timeName, "points");
+        const Foam::vectorField U = readState(timeName, "U");
+        for (Foam::label n = 0; n < points.size(); ++n)
+        {
+            s.x.push_back(points[n].x());
+            s.x.push_back(points[n].y());
+            s.U.push_back(U[n].x());
+            s.U.push_back(U[n].y());
+        }
+        s.removed = writtenConversions(timeName);
+        s.removed.insert
+        (
+            s.removed.end(), insideBodies.begin(), insideBodies.end()
+        );
+        std::sort(s.removed.begin(), s.removed.end());
+        std::vector<double> elementMass;
+        for (const auto& tm : model.triangleMass)
+        {
+            if
+            (
+                !std::binary_search
+                (
+                    s.removed.begin(), s.removed.end(), tm.first
+                )
+            )
+            {
+                elementMass.push_back(tm.second);
+            }
+        }
+        s.nElements = Foam::label(elementMass.size());
+        s.elementMass = sortedSum(elementMass);
+        // A triangle removed in model and not here: its mass is unknown
+        if
+        (
+            s.nElements + Foam::label(s.removed.size())
+         != model.nElements + Foam::label(model.removed.size())
+        )
+        {
+            s.elementMass = std::numeric_limits<double>::quiet_NaN();
+        }
+        if (fs::exists(dir/"particlePositions"))
+        {
+            const Foam::vectorField x =
+                readState(timeName, "particlePositions");
+            const Foam::scalarField m =
+                readScalarState(timeName, "particleMass");
+            s.nParticles = m.size();
+            s.particleMass = sortedSum(std::vector<double>(m.begin(), m.end()));
+            for (const Foam::vector& p : x)
+            {
+                s.particleX.emplace_back(p.x(), p.y());
+            }
+            std::sort(s.particleX.begin(), s.particleX.end());
+        }
+        return s;
+    }
+
+    //- Squash the fluid element at (px, py) of the reference configuration
+    //  (after advance()) and give the moved node a NaN velocity if nan
+    static void squash
+    (
+        Foam::elementModel& em,
+        const double px,
+        const double py,
+        const bool nan = true
+    )
+    {
+        Foam::scalar bary[3];
+        const Foam::label el = em.locate(px, py, true, bary);
+        ASSERT_GE(el, 0) << "no element at (" << px << ' ' << py << ')';
+        const Foam::label* n = &em.elementNodes()[3*el];
+        const std::vector<Foam::scalar>& x = em.positions();
+        const double mx = 0.5*(x[2*n[1]] + x[2*n[2]]);
+        const double my = 0.5*(x[2*n[1] + 1] + x[2*n[2] + 1]);
+        em.setPosition
+        (
+            n[0], x[2*n[0]] + 0.8*(mx - x[2*n[0]]),
+            x[2*n[0] + 1] + 0.8*(my - x[2*n[0] + 1])
+        );
+        if (nan)
+        {
+            const double NaN = std::numeric_limits<double>::quiet_NaN();
+            em.setNodeVelocity(n[0], NaN, NaN);
+        }
+    }
+
+    //- Run nGood steps, then one that converts and fails; the state of the
+    //  last good step and that of the model after the stop (in memory), the
+    //  triangles taken out at t = 0 inside the bodies, the last good time's
+    //  name and what the model printed. Fails the test if the failed step
+    //  did not convert.
+    void runToFailedConversion
+    (
+        const int nGood,
+        modelState& lastGood,
+        modelState& afterStop,
+        std::vector<Foam::label>& insideBodies,
+        std::string& lastGoodTime,
+        std::string& output
+    )
+    {
+        setControl("endTime", "1");
+        setControl("writeInterval", "1000");
+        writeCase();
+        if (HasFatalFailure()) return;
+
+        captureOutput capture;
+        std::string message;
+        {
+            Foam::Time runTime
+            (
+                Foam::Time::controlDictName,
+                Foam::fileName(caseDir_.parent_path().string()),
+                Foam::fileName(caseName)
+            );
+            Foam::spemModel model(runTime);
+            model.evaluate();
+            model.write(true);
+            // The triangles taken out at t = 0 that the state does not
+            // list as converted: those inside the bodies
+            const std::vector<Foam::label> converted0 =
+                writtenConversions("0");
+            for (const Foam::label t : stateOf(model).removed)
+            {
+                if
+                (
+                    !std::binary_search
+                    (
+                        converted0.begin(), converted0.end(), t
+                    )
+                )
+                {
+                    insideBodies.push_back(t);
+                }
+            }
+            for (int step = 0; step < nGood; ++step)
+            {
+                ++runTime;
+                model.advance();
+                model.evaluate();
+                model.write();
+            }
+            lastGood = stateOf(model);
+            lastGoodTime = runTime.timeName();
+
+            ++runTime;
+            model.advance();
+            squash(model.elements(), 0.5*columnWidth, 0.75);
+            if (HasFatalFailure()) return;
+            capture.text << "\n[test] the failing step begins\n";
+            try
+            {
+                model.evaluate();
+            }
+            catch (const Foam::error& err)
+            {
+                message = err.message();
+            }
+            // The model after the stop: the state it wrote
+            if (!message.empty()) afterStop = stateOf(model);
+        }
+        // The stop's message (a FatalError thrown, not printed) last
+        output = capture.text.str() + "\n" + message;
+        ASSERT_FALSE(message.empty())
+            << "the step with a NaN did not fail:\n" << output;
+        EXPECT_TRUE(contains(message, "Run stopped")) << message;
+        // (std::cout is still captured)
+        std::printf
+        (
+            "Rollback: %s\n", message.substr(0, message.find('\n')).c_str()
+        );
+        std::fflush(stdout);
+        const std::string failing =
+            output.substr(output.find("[test] the failing step begins"));
+        ASSERT_TRUE(contains(failing, "Conversion at time"))
+            << "the failing step converted nothing:\n" << failing;
+        EXPECT_TRUE(contains(failing, "undone (the step failed)")) << failing;
+    }
+
+    //- Entries in which two arrays differ (-1: not the same size)
+    template<class T>
+    static long nDiffering(const std::vector<T>& a, const std::vector<T>& b)
+    {
+        if (a.size() != b.size()) return -1;
+        long n = 0;
+        for (std::size_t i = 0; i < a.size(); ++i) n += !(a[i] == b[i]);
+        return n;
+    }
+
+    //- State b is state a: the same elements (converted triangles),
+    //  particles and total mass, node for node and particle for particle,
+    //  bit for bit
+    static void expectSameState(const modelState& a, const modelState& b)
+    {
+        EXPECT_EQ(b.nElements, a.nElements);
+        EXPECT_EQ(b.removed.size(), a.removed.size());
+        EXPECT_EQ(nDiffering(a.removed, b.removed), 0);
+        EXPECT_EQ(b.nParticles, a.nParticles);
+        EXPECT_EQ
+        (
+            b.elementMass + b.particleMass, a.elementMass + a.particleMass
+        ) << "total mass";
+        EXPECT_EQ(b.particleMass, a.particleMass);
+        EXPECT_EQ(nDiffering(a.particleX, b.particleX), 0)
+            << "particle positions";
+        EXPECT_EQ(nDiffering(a.x, b.x), 0) << "node positions";
+        EXPECT_EQ(nDiffering(a.U, b.U), 0) << "node velocities";
+    }
+
+    //- The model after the stop and the state it wrote are the last good
+    //  step's
+    void expectLastGoodState
+    (
+        const modelState& lastGood,
+        const modelState& afterStop,
+        const std::vector<Foam::label>& insideBodies,
+        const std::string& lastGoodTime,
+        const std::string& output
+    )
+    {
+        std::smatch m;
+        ASSERT_TRUE
+        (
+            std::regex_search
+            (
+                output, m, std::regex("last good state \\(time ([^)]*)\\)")
+            )
+        ) << output;
+        ASSERT_EQ(m[1].str(), lastGoodTime);
+        modelState written;
+        try
+        {
+            written = writtenState(lastGoodTime, insideBodies, lastGood);
+        }
+        catch (const Foam::error& err)
+        {
+            FAIL() << "cannot read the last good state: " << err.message();
+        }
+        std::cout << "Rollback: last good state at " << lastGoodTime << ": "
+            << lastGood.nElements << " elements, " << lastGood.nParticles
+            << " particles, total mass "
+            << lastGood.elementMass + lastGood.particleMass << " kg/m; after"
+            << " the stop " << afterStop.nElements << " elements, "
+            << afterStop.nParticles << " particles, total mass "
+            << afterStop.elementMass + afterStop.particleMass << " kg/m;"
+            << " written " << written.nElements << " elements, "
+            << written.nParticles << " particles, total mass "
+            << written.elementMass + written.particleMass << " kg/m"
+            << std::endl;
+        {
+            SCOPED_TRACE("the model after the stop");
+            expectSameState(lastGood, afterStop);
+        }
+        {
+            SCOPED_TRACE("the written state");
+            expectSameState(lastGood, written);
+        }
+    }
+
+    //- Run spemFoam on from the written last good state for a few steps
+    void expectRestartRuns(const std::string& lastGoodTime)
+    {
+        setControl("endTime", std::to_string(std::stod(lastGoodTime) + 0.005));
+        writeDictionaries();
+        const int status = runSolver("log.spemFoam.restart");
+        const std::string text = log("log.spemFoam.restart");
+        EXPECT_EQ(status, 0) << text;
+        expectInLog(text, {"Restart: read", "\nEnd"});
+    }
+};
+
+
+TEST_F(SolverRollback, blowUpInTheFirstConversionWritesTheElementsOnlyState)
+{
+    // No particles before the failing step: its conversion made the
+    // particle half, which the last good state does not have
+    modelState lastGood, afterStop;
+    std::vector<Foam::label> insideBodies;
+    std::string lastGoodTime, output;
+    runToFailedConversion
+    (
+        5, lastGood, afterStop, insideBodies, lastGoodTime, output
+    );
+    if (HasFatalFailure()) return;
+    EXPECT_EQ(lastGood.nParticles, 0);
+    EXPECT_FALSE(fs::exists(caseDir_/lastGoodTime/"spem"/"particlePositions"));
+    expectLastGoodState
+    (
+        lastGood, afterStop, insideBodies, lastGoodTime, output
+    );
+    if (HasFatalFailure()) return;
+    expectRestartRuns(lastGoodTime);
+}
+
+
+TEST_F(SolverRollback, blowUpInAConversionWritesThePreviousElementsAndParticles)
+{
+    // Particles before the failing step (a preset region at the bottom):
+    // its conversion appended more, which the last good state does not
+    // have
+    schemes_ =
+        "method          SPEM;\n"
+        "conversion\n{\n    presetParticleRegions\n    {\n"
+        "        bottom { type box; min (-1 -1 0); max (1 0.3 0); }\n"
+        "    }\n}\n";
+    modelState lastGood, afterStop;
+    std::vector<Foam::label> insideBodies;
+    std::string lastGoodTime, output;
+    runToFailedConversion
+    (
+        5, lastGood, afterStop, insideBodies, lastGoodTime, output
+    );
+    if (HasFatalFailure()) return;
+    EXPECT_GT(lastGood.nParticles, 0);
+    expectLastGoodState
+    (
+        lastGood, afterStop, insideBodies, lastGoodTime, output
+    );
+    if (HasFatalFailure()) return;
+    expectRestartRuns(lastGoodTime);
+}
+
+
+TEST_F(SolverRollback, blowUpInAConversionNextToASlidingBodyKeepsItsNodesOnTheBody)
+{
+    // A heavy cylinder in the column, whose element nodes slide on it: the
+    // squashed element's group reaches the nodes on it, which the
+    // conversion drops and the undo attaches again
+    rigidBodies_ = floatBody(3);
+    // Courant number 0.34: the restart checks the step against maxCo
+    setControl("deltaT", "5e-4");
+    modelState lastGood, afterStop;
+    std::vector<Foam::label> insideBodies;
+    std::string lastGoodTime, output;
+    runToFailedConversion
+    (
+        5, lastGood, afterStop, insideBodies, lastGoodTime, output
+    );
+    if (HasFatalFailure()) return;
+    expectLastGoodState
+    (
+        lastGood, afterStop, insideBodies, lastGoodTime, output
+    );
+    if (HasFatalFailure()) return;
+    // The nodes on the body: those of t = 0 (the body has sunk by some
+    // 20 micrometres in the good steps and attached no other)
+    const std::vector<Foam::label> nodes0 = writtenLabels("0", "bodyNodes");
+    EXPECT_FALSE(nodes0.empty());
+    EXPECT_EQ(writtenLabels(lastGoodTime, "bodyNodes"), nodes0);
+    expectRestartRuns(lastGoodTime);
+}
+
+
+TEST_F(SolverRollback, blowUpInTheNextAdvanceKeepsTheParticlesOfTheLastStep)
+{
+    // A step that converts and succeeds, then one that fails in the
+    // elements' advance (a NaN external force on a node), before the
+    // particles move: their last good state is the one they have, with
+    // the particles of that conversion (reverting them would take them a
+    // step further back, and without those particles). The conversion
+    // comes from the flow: the elements next to a preset particle region
+    // deform a little, and a stretch ratio of 1.001 is distortion
+    schemes_ =
+        "method          SPEM;\n"
+        "conversion\n{\n    criterion stretchRatio;\n"
+        "    maxStretchRatio 1.001;\n    presetParticleRegions\n    {\n"
+        "        bottom { type box; min (-1 -1 0); max (1 0.3 0); }\n"
+        "    }\n}\n";
+    setControl("endTime", "1");
+    setControl("writeInterval", "1000");
+    writeCase();
+    if (HasFatalFailure()) return;
+
+    modelState lastGood, afterStop;
+    std::string lastGoodTime, message, output;
+    {
+        captureOutput capture;
+        Foam::Time runTime
+        (
+            Foam::Time::controlDictName,
+            Foam::fileName(caseDir_.parent_path().string()),
+            Foam::fileName(caseName)
+        );
+        Foam::spemModel model(runTime);
+        model.evaluate();
+        model.write(true);
+        // Steps until one converts
+        for (int step = 0; step < 100; ++step)
+        {
+            const Foam::label nElements = model.elements().nElements();
+            ++runTime;
+            model.advance();
+            model.evaluate();
+            model.write();
+            if (model.elements().nElements() < nElements) break;
+        }
+        lastGood = stateOf(model);
+        lastGoodTime = runTime.timeName();
+
+        // A node of an element far from the particles: the first of the
+        // element holding the highest reference centroid
+        const Foam::elementModel& em = model.elements();
+        Foam::label top = 0;
+        double yTop = -1;
+        for (Foam::label el = 0; el < em.nElements(); ++el)
+        {
+            const Foam::label* n = &em.elementNodes()[3*el];
+            const double y =
+                em.referencePositions()[2*n[0] + 1]
+              + em.referencePositions()[2*n[1] + 1]
+              + em.referencePositions()[2*n[2] + 1];
+            if (y > yTop)
+            {
+                yTop = y;
+                top = n[0];
+            }
+        }
+        model.elements().externalForce()[2*top] =
+            std::numeric_limits<double>::quiet_NaN();
+        ++runTime;
+        try
+        {
+            model.advance();
+        }
+        catch (const Foam::error& err)
+        {
+            message = err.message();
+        }
+        if (!message.empty()) afterStop = stateOf(model);
+        output = capture.text.str() + "\n" + message;
+    }
+    ASSERT_FALSE(message.empty()) << "the step did not fail:\n" << output;
+    EXPECT_TRUE(contains(message, "node velocity is not finite")) << message;
+    ASSERT_TRUE(contains(output, "Conversion at time " + lastGoodTime + ":"))
+        << "no step converted:\n" << output;
+    EXPECT_GT(lastGood.nParticles, 0);
+    expectLastGoodState(lastGood, afterStop, {}, lastGoodTime, output);
+    if (HasFatalFailure()) return;
+    expectRestartRuns(lastGoodTime);
 }
 
 

@@ -13,6 +13,8 @@ Description
         pressure exactly on a regular lattice, the kernel gradient not;
       - the initial relaxation opens the close pairs of converted
         barycentres and changes nothing but the fluid positions;
+      - revert() after a step that appended particles gives back the
+        particles before it;
       - wall particles fill layers and corners outside the mesh;
       - element -> particle conversion conserves mass and momentum and puts
         the particle at the barycentre (eqs. 17-18).
@@ -30,7 +32,9 @@ Description
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
+#include <map>
 #include <random>
 
 using namespace Foam;
@@ -307,6 +311,99 @@ TEST(SphFluid, momentumChangesOnlyByGravityAndWallImpulse)
               << std::endl;
     ASSERT_GT(impulse, 0);
     EXPECT_LT(worst, 1e-12*mass + 1e-9*impulse);
+}
+
+
+TEST(SphFluid, revertTakesOutTheParticlesAppendedSinceTheAdvance)
+{
+    // A step that appends fluid particles (a conversion) and fails: the
+    // reverted half is the one before the step, whatever order the sort by
+    // cell has given its particles, and the next particles appended get
+    // the ids the reverted ones had
+    const scalar dx = 0.01;
+    particleSet ps = irregularParticles(12, dx, 0.1, 3);
+    std::mt19937 gen(7);
+    std::uniform_real_distribution<scalar> u(-0.2, 0.2);
+    for (scalar& v : ps.velocities()) v = u(gen);
+    const scalar lo[2] = {-1, -1}, hi[2] = {2, 2};
+    sphFluid fluid
+    (
+        schemes(""), std::move(ps), 1000, 20, 1e-3, 0, -9.81, lo, hi
+    );
+    ASSERT_TRUE(fluid.evaluate());
+    fluid.advance(1e-4);
+    ASSERT_TRUE(fluid.evaluate()) << fluid.failure();
+
+    // The state before the failing step, by particle id
+    struct state { scalar x, y, u, v, rho; };
+    const auto byId = [](const sphFluid& f)
+    {
+        std::map<label, state> s;
+        const particleSet& p = f.particles();
+        for (label i = 0; i < p.size(); ++i)
+        {
+            if (p.kinds()[i] != particleSet::kind::fluid) continue;
+            s[p.id()[i]] =
+            {
+                p.positions()[2*i], p.positions()[2*i + 1],
+                p.velocities()[2*i], p.velocities()[2*i + 1], p.density()[i]
+            };
+        }
+        return s;
+    };
+    const std::map<label, state> before = byId(fluid);
+    const label nBefore = fluid.nFluid();
+
+    // The failing step: advance, append, evaluate (until a sort by cell,
+    // every reorderInterval evaluations, has put the appended particles
+    // among the others), revert
+    fluid.advance(1e-4);
+    particleSet converted;
+    for (label k = 0; k < 5; ++k)
+    {
+        converted.append
+        (
+            (2 + 2*k + 0.5)*dx, 6.3*dx, 0.1, 0, 1000, 0, 1000*dx*dx, 1.3*dx
+        );
+    }
+    fluid.appendFluid(converted);
+    ASSERT_EQ(fluid.nFluid(), nBefore + 5);
+    for (int step = 0; step < sphFluid::reorderInterval; ++step)
+    {
+        ASSERT_TRUE(fluid.evaluate()) << fluid.failure();
+    }
+    fluid.revert();
+
+    EXPECT_EQ(fluid.nFluid(), nBefore);
+    EXPECT_EQ(fluid.particles().size(), nBefore);
+    const std::map<label, state> after = byId(fluid);
+    ASSERT_EQ(after.size(), before.size());
+    label nDiffer = 0;
+    for (const auto& kv : before)
+    {
+        const auto it = after.find(kv.first);
+        if (it == after.end()) { ++nDiffer; continue; }
+        const state& a = kv.second;
+        const state& b = it->second;
+        nDiffer +=
+            a.x != b.x || a.y != b.y || a.u != b.u || a.v != b.v
+         || a.rho != b.rho;
+    }
+    EXPECT_EQ(nDiffer, 0) << "particles not as before the step";
+
+    // The next conversion numbers its particles as the undone one did
+    const label firstId = before.rbegin()->first + 1;
+    fluid.appendFluid(converted);
+    std::vector<label> ids;
+    for (label i = 0; i < fluid.particles().size(); ++i)
+    {
+        const label id = fluid.particles().id()[i];
+        if (id >= firstId) ids.push_back(id);
+    }
+    std::sort(ids.begin(), ids.end());
+    std::vector<label> expected(5);
+    for (label k = 0; k < 5; ++k) expected[k] = firstId + k;
+    EXPECT_EQ(ids, expected);
 }
 
 

@@ -535,6 +535,21 @@ void Foam::bodyElementCoupling::markElementsOf
 }
 
 
+void Foam::bodyElementCoupling::restore
+(
+    const std::vector<label>& nodes,
+    const std::vector<label>& bodies,
+    const elementModel& elements
+)
+{
+    for (const label n : node_) attached_[n] = false;
+    node_ = nodes;
+    body_ = bodies;
+    for (const label n : node_) attached_[n] = true;
+    update(elements);
+}
+
+
 void Foam::bodyElementCoupling::update(const elementModel& elements)
 {
     const std::vector<scalar>& mass = elements.nodeMass();

@@ -32,6 +32,54 @@ void Foam::spemMethods::SPEM::collectCouplings()
 }
 
 
+void Foam::spemMethods::SPEM::recordCheckpoint()
+{
+    spemMethod::recordCheckpoint();
+    if (bodyElements_)
+    {
+        checkpointBodyNodes_ = bodyElements_->nodes();
+        checkpointNodeBodies_ = bodyElements_->bodies();
+    }
+}
+
+
+void Foam::spemMethods::SPEM::undoEvaluation()
+{
+    spemMethod::undoEvaluation();
+    if (bodyElements_)
+    {
+        bodyElements_->restore
+        (
+            checkpointBodyNodes_, checkpointNodeBodies_, *elements_
+        );
+    }
+}
+
+
+void Foam::spemMethods::SPEM::removeParticleHalf()
+{
+    coupling_.reset();
+    spemMethod::removeParticleHalf();
+}
+
+
+void Foam::spemMethods::SPEM::evaluateLastGood()
+{
+    if (!coupling_)
+    {
+        spemMethod::evaluateLastGood();
+        return;
+    }
+    // The ghosts of the failed evaluation stand for its elements: those of
+    // the reverted ones instead, set as the step sets them but without
+    // eq. (26), which the good state has had already
+    elements_->evaluate();
+    coupling_->binParticles(*particles_);
+    coupling_->setGhosts(*elements_, *particles_);
+    particles_->evaluate();
+}
+
+
 void Foam::spemMethods::SPEM::createParticleHalf
 (
     particleSet&& ps,
@@ -396,6 +444,8 @@ Foam::spemMethods::SPEM::SPEM
 
 bool Foam::spemMethods::SPEM::evaluate()
 {
+    // What a failure of this evaluation undoes (revertToLastGood())
+    recordCheckpoint();
     if (conversion_)
     {
         const std::vector<label> triangles =

@@ -324,6 +324,57 @@ bool Foam::spemMethod::restartConversions()
 }
 
 
+void Foam::spemMethod::recordCheckpoint()
+{
+    checkpoint_.recorded = true;
+    checkpoint_.nConverted = label(convertedTriangles_.size());
+    checkpoint_.hadParticles = bool(particles_);
+}
+
+
+void Foam::spemMethod::undoEvaluation()
+{
+    const label nBefore = checkpoint_.nConverted;
+    if (label(convertedTriangles_.size()) == nBefore) return;
+
+    // The elements of the conversion back (the particle half's revert()
+    // took its particles out); the element set of the last good state
+    // builds its domains, masses and interfaces as they were
+    const std::vector<label> undone
+    (
+        convertedTriangles_.begin() + nBefore, convertedTriangles_.end()
+    );
+    convertedTriangles_.resize(nBefore);
+    elements_->restoreTriangles(case_.mesh, undone);
+    if (!checkpoint_.hadParticles) removeParticleHalf();
+    callHooks(&spemCoupling::afterConversion);
+
+    Info<< "Conversion at time " << case_.runTime.timeName() << " undone"
+        << " (the step failed): " << label(undone.size()) << " fluid elements"
+        << " again; " << elements_->nElements() << " elements, "
+        << (particles_ ? particles_->nFluid() : 0) << " particles" << nl;
+}
+
+
+void Foam::spemMethod::removeParticleHalf()
+{
+    structureCoupling_.reset();
+    bodyCoupling_.reset();
+    // The particles before the tank they refer to
+    particles_.reset();
+    particleTank_.reset();
+    nOutsideToWarn_ = 0;
+    collectCouplings();
+}
+
+
+void Foam::spemMethod::evaluateLastGood()
+{
+    if (elements_) elements_->evaluate();
+    if (particles_) particles_->evaluate();
+}
+
+
 std::vector<Foam::label> Foam::spemMethod::trianglesInsideBodies() const
 {
     std::vector<label> inside;
@@ -475,6 +526,7 @@ Foam::spemMethod::spemMethod(const spemCase& c)
     elementFluid_(nullptr),
     fluidSpacing_(0),
     lastDeltaT_(0),
+    particlesAdvanced_(false),
     nOutsideToWarn_(0),
     machToWarn_(0.1),
     evaluationsSinceMachCheck_(machCheckInterval - 1)
@@ -514,6 +566,9 @@ void Foam::spemMethod::setUpWalls()
 
 bool Foam::spemMethod::advance(const scalar dt)
 {
+    // The last evaluation succeeded: nothing of it is undone any more
+    checkpoint_.recorded = false;
+    particlesAdvanced_ = false;
     callHooks(&spemCoupling::beforeElementAdvance);
     if (elements_ && !elements_->advance(dt))
     {
@@ -524,6 +579,7 @@ bool Foam::spemMethod::advance(const scalar dt)
         return fail(contact_->failure(), unstableHint);
     }
     callHooks(&spemCoupling::afterElementAdvance);
+    particlesAdvanced_ = bool(particles_);
     if (particles_ && !particles_->advance(dt))
     {
         return fail(particles_->failure(), unstableHint);
@@ -624,12 +680,17 @@ bool Foam::spemMethod::evaluate()
 
 void Foam::spemMethod::revertToLastGood()
 {
+    // Each half's state before the last advance() (the particle half
+    // without the particles appended since; the elements always advance
+    // first), then what the failed evaluation changed besides the state
     if (elements_) elements_->revert();
-    if (particles_) particles_->revert();
+    if (particles_ && particlesAdvanced_) particles_->revert();
+    particlesAdvanced_ = false;
+    if (checkpoint_.recorded) undoEvaluation();
+    checkpoint_.recorded = false;
     // Stresses and pressures of the good state for the output (it
     // evaluated before)
-    if (elements_) elements_->evaluate();
-    if (particles_) particles_->evaluate();
+    evaluateLastGood();
 }
 
 

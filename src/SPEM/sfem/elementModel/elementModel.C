@@ -781,14 +781,43 @@ void Foam::elementModel::removeTriangles
     }
     build(mesh);
 
-    // Nodes without elements rest: no mass, no momentum
-    for (int b = 0; b < 2; ++b)
+    // Nodes without elements rest: no mass, no momentum. In the current
+    // state only: advance() writes the other buffer whole, and until then
+    // it is the previous state, which a revert after a failed step makes
+    // current again with its elements restored (restoreTriangles())
+    std::vector<scalar>& v = v_[cur_];
+    for (label n = 0; n < nNodes_; ++n)
     {
-        for (label n = 0; n < nNodes_; ++n)
-        {
-            if (nodeMass_[n] == 0) v_[b][2*n] = v_[b][2*n + 1] = 0;
-        }
+        if (nodeMass_[n] == 0) v[2*n] = v[2*n + 1] = 0;
     }
+}
+
+
+void Foam::elementModel::restoreTriangles
+(
+    const triMesh& mesh,
+    const std::vector<label>& triangles
+)
+{
+    if (mesh.nTriangles() != label(removedTriangle_.size()))
+    {
+        FatalErrorInFunction
+            << "restoreTriangles needs the mesh of construction"
+            << exit(FatalError);
+    }
+    for (const label t : triangles)
+    {
+        if (t < 0 || t >= mesh.nTriangles() || !removedTriangle_[t])
+        {
+            FatalErrorInFunction
+                << "Triangle " << t << " was not taken out of the model"
+                << exit(FatalError);
+        }
+        removedTriangle_[t] = false;
+    }
+    // The same set of removed triangles builds the same elements and
+    // domains, in the same order, with the same masses
+    build(mesh);
 }
 
 

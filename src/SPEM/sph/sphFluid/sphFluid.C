@@ -382,6 +382,7 @@ Foam::sphFluid::sphFluid
     nStructure_(0),
     nextId_(0),
     freshIdBegin_(0),
+    stepIdBegin_(0),
     massDamping_(0),
     pendingDeltaT_(0),
     previousDeltaT_(0),
@@ -417,6 +418,7 @@ Foam::sphFluid::sphFluid
     }
     for (const label id : particles_.id()) nextId_ = std::max(nextId_, id + 1);
     freshIdBegin_ = nextId_;
+    stepIdBegin_ = nextId_;
     for (int k = 0; k < 2; ++k)
     {
         boxMin_[k] = boxMin[k];
@@ -1048,6 +1050,7 @@ bool Foam::sphFluid::advance(const scalar dt)
     pendingDeltaT_ = dt;
     oldPreviousDeltaT_ = previousDeltaT_;
     previousDeltaT_ = dt;
+    stepIdBegin_ = nextId_;
     return true;
 }
 
@@ -1340,6 +1343,30 @@ void Foam::sphFluid::revert()
     particles_.density() = oldDensity_;
     pendingDeltaT_ = 0;
     previousDeltaT_ = oldPreviousDeltaT_;
+
+    // The fluid particles appended since the advance (elements converted
+    // in the failed step) were not there before it. Their ids, given in
+    // order, find them wherever the sort by cell has put them
+    if (nextId_ > stepIdBegin_)
+    {
+        const std::vector<particleSet::kind>& pk = particles_.kinds();
+        const std::vector<label>& pid = particles_.id();
+        const label first = stepIdBegin_;
+        const label nBefore = particles_.size();
+        const label n = removeIf
+        (
+            [&](const label i)
+            {
+                return pk[i] == particleSet::kind::fluid && pid[i] >= first;
+            }
+        );
+        nFluid_ -= nBefore - n;
+        nextId_ = stepIdBegin_;
+        // The per-particle results are those of no evaluation now
+        resizeFields();
+        lastSortOrder_.clear();
+    }
+    freshIdBegin_ = nextId_;
 }
 
 
