@@ -45,7 +45,8 @@ void Foam::timeStepControl::checkControlDict() const
             "functions", "libs", "profiling", "cacheTemporaryObjects",
             "fileHandler", "DebugSwitches", "InfoSwitches",
             "OptimisationSwitches", "DimensionSets", "DimensionedConstants",
-            "Tolerances", "logInterval", "maxSteps"
+            "Tolerances", "logInterval", "maxSteps", "subCycling",
+            "subCyclingLoad"
         }
     );
 
@@ -107,6 +108,12 @@ Foam::scalar Foam::timeStepControl::stepToWriteTime(const scalar dt) const
 
 // * * * * * * * * * * * * * * * Static Functions  * * * * * * * * * * * * * //
 
+Foam::scalar Foam::timeStepControl::readMaxCo(const dictionary& controlDict)
+{
+    return getCheckedOrDefault(controlDict, "maxCo", 0.9, maxCoRange);
+}
+
+
 void Foam::timeStepControl::checkBeforeTime(const fileName& casePath)
 {
     // OpenFOAM's Time divides by both while it is constructed: a zero
@@ -138,10 +145,7 @@ Foam::timeStepControl::timeStepControl(Time& runTime)
     (
         runTime.controlDict().getOrDefault<Switch>("adjustTimeStep", false)
     ),
-    maxCo_
-    (
-        getCheckedOrDefault(runTime.controlDict(), "maxCo", 0.9, maxCoRange)
-    ),
+    maxCo_(readMaxCo(runTime.controlDict())),
     maxDeltaT_
     (
         getCheckedOrDefault
