@@ -22,8 +22,8 @@ Description
                            the same state as a continuous run (also with
                            an elastic plate under the column whose
                            sub-cycling state is part of the restart)
-    SolverSubCycling.*     the plate sub-cycles by default and the log
-                           says so; subCycling off takes one step and
+    SolverSubCycling.*     the plate sub-cycles with subCycling on and the
+                           log says so; subCycling off takes one step and
                            writes no sub-cycling state; without a solid
                            subCycling on and off write the same files
     SolverSettledColumn.*  the column settled by damping: hydrostatic
@@ -1331,6 +1331,7 @@ TEST_F(SolverRestart, subCyclingPlateRestartsBitForBit)
     // The last sub-step of the plate is part of the state: without it the
     // first sub-step after the restart would span another length
     addPlate();
+    setControl("subCycling", "on");
     compareRestartedWithContinuous("ascii", 0);
     if (HasFailure()) return;
     const std::string step = readText(caseDir_/"0.1"/"spem"/"timeStep");
@@ -3407,9 +3408,10 @@ protected:
 };
 
 
-TEST_F(SolverSubCycling, plateSubCyclesByDefaultAndTheLogSaysWhy)
+TEST_F(SolverSubCycling, plateSubCyclesAndTheLogSaysWhy)
 {
     addPlate();
+    setControl("subCycling", "on");
     setControl("endTime", "0.01");
     const std::string text = runExpectingSuccess();
     if (HasFailure()) return;
@@ -3420,7 +3422,7 @@ TEST_F(SolverSubCycling, plateSubCyclesByDefaultAndTheLogSaysWhy)
     ) << text;
     EXPECT_TRUE
     (
-        contains(text, "solids sub-cycle (subCycling on, load extrapolated)")
+        contains(text, "solids sub-cycle (subCycling on, load interpolated)")
     ) << text;
     EXPECT_TRUE
     (
@@ -3440,9 +3442,9 @@ TEST_F(SolverSubCycling, plateSubCyclesByDefaultAndTheLogSaysWhy)
     const std::string held = runExpectingSuccess();
     EXPECT_TRUE(contains(held, "load held")) << held;
     EXPECT_FALSE(fs::exists(caseDir_/"0.01"/"spem"/"solidFluidLoad"));
-    setControl("subCyclingLoad", "interpolated");
+    setControl("subCyclingLoad", "lagged");
     const std::string refused = runExpectingFatalError();
-    EXPECT_TRUE(contains(refused, "subCyclingLoad interpolated")) << refused;
+    EXPECT_TRUE(contains(refused, "subCyclingLoad lagged")) << refused;
 }
 
 
@@ -3473,6 +3475,7 @@ TEST_F(SolverSubCycling, offTakesOneStepAndWritesNoSubCyclingState)
 TEST_F(SolverSubCycling, withoutASolidOnAndOffWriteTheSameFiles)
 {
     setControl("endTime", "0.05");
+    setControl("subCycling", "on");
     const std::string on = runExpectingSuccess();
     if (HasFailure()) return;
     const fs::path caseOn = caseDir_;

@@ -9,19 +9,38 @@
 
 Foam::solidSubCycling::solidSubCycling(const dictionary& controlDict)
 :
-    enabled_(controlDict.getOrDefault<Switch>("subCycling", true)),
+    enabled_(controlDict.getOrDefault<Switch>("subCycling", false)),
     maxCo_(timeStepControl::readMaxCo(controlDict)),
-    extrapolate_(true)
+    load_(elementModel::subCycleLoad::interpolated)
 {
     const word load =
-        controlDict.getOrDefault<word>("subCyclingLoad", "extrapolated");
-    if (load != "extrapolated" && load != "held")
+        controlDict.getOrDefault<word>("subCyclingLoad", "interpolated");
+    if (load == "extrapolated")
+    {
+        load_ = elementModel::subCycleLoad::extrapolated;
+    }
+    else if (load == "held")
+    {
+        load_ = elementModel::subCycleLoad::held;
+    }
+    else if (load != "interpolated")
     {
         FatalIOErrorInFunction(controlDict)
             << "subCyclingLoad " << load << " in " << controlDict.name()
-            << ": extrapolated (default) or held" << exit(FatalIOError);
+            << ": interpolated (default), extrapolated or held"
+            << exit(FatalIOError);
     }
-    extrapolate_ = load == "extrapolated";
+}
+
+
+const char* Foam::solidSubCycling::loadName() const
+{
+    switch (load_)
+    {
+        case elementModel::subCycleLoad::held: return "held";
+        case elementModel::subCycleLoad::extrapolated: return "extrapolated";
+        default: return "interpolated";
+    }
 }
 
 

@@ -79,7 +79,7 @@ void Foam::spemMethod::createElementHalf
         const scalar subStep = case_.restart.readPreviousSubStep();
         if (subStep >= 0) elements_->setPreviousSubStep(subStep);
     }
-    elements_->setExtrapolatedLoad(subCycling_.extrapolate());
+    elements_->setSubCycleLoad(subCycling_.load());
 }
 
 
@@ -555,7 +555,7 @@ bool Foam::spemMethod::advanceElements(const scalar dt)
     const scalar subDt = dt/n;
     for (label k = 0; k < n; ++k)
     {
-        if (k > 0 && !elements_->evaluateSolids())
+        if (k > 0 && !elements_->evaluateSolids(k*subDt))
         {
             return fail(elements_->failure(), unstableHint);
         }
@@ -746,7 +746,7 @@ std::string Foam::spemMethod::stableStepLimit() const
     {
         const scalar solid = elements_->solidStableDeltaT();
         os  << "\n    solids sub-cycle (subCycling on, load "
-            << (subCycling_.extrapolate() ? "extrapolated" : "held")
+            << subCycling_.loadName()
             << "): ceil(deltaT/(maxCo dt_s)) sub-steps per step, "
             << subCycling_.subSteps(subCycling_.maxCo()*stableDeltaT(), solid)
             << " at maxCo times the stable step; the solids' stable step dt_s "

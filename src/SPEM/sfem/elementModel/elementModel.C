@@ -120,6 +120,52 @@ void Foam::elementModel::buildSolidPartition()
             solidElement_[el] = 1;
         }
     }
+    // interpolated: the fluid elements with a solid node, their domains and
+    // the elements and nodes these need
+    interfaceElems_.clear();
+    interfaceDomains_.clear();
+    interfaceDomainRegion_.clear();
+    interfaceDomainElems_.clear();
+    interfaceNodes_.clear();
+    std::vector<char> domainIn(domainArea_.size(), 0);
+    std::vector<char> elemIn(elemTriangle_.size(), 0), nodeIn(nNodes_, 0);
+    for (label r = 0; r < regions_.size(); ++r)
+    {
+        if (!materials_.set(r) || !materials_[r].isFluid()) continue;
+        for (label el = regions_[r].elemBegin; el < regions_[r].elemEnd; ++el)
+        {
+            const label* en = &elemNodes_[3*el];
+            if (!solidNode_[en[0]] && !solidNode_[en[1]] && !solidNode_[en[2]])
+            {
+                continue;
+            }
+            interfaceElems_.push_back(el);
+            for (label i = 0; i < 3; ++i)
+            {
+                const label k = elemDomains_[3*el + i];
+                if (domainIn[k]) continue;
+                domainIn[k] = 1;
+                interfaceDomains_.push_back(k);
+                interfaceDomainRegion_.push_back(r);
+                for (label side = 0; side < 2; ++side)
+                {
+                    const label e = domainElems_[2*k + side];
+                    if (e < 0 || elemIn[e]) continue;
+                    elemIn[e] = 1;
+                    interfaceDomainElems_.push_back(e);
+                    for (label a = 0; a < 3; ++a)
+                    {
+                        const label n = elemNodes_[3*e + a];
+                        if (!nodeIn[n]) interfaceNodes_.push_back(n);
+                        nodeIn[n] = 1;
+                    }
+                }
+            }
+        }
+    }
+    subX_.assign(2*nNodes_, 0);
+    subV_.assign(2*nNodes_, 0);
+
     // The fluid's load jumps where fluid elements became particles: its
     // rate starts again
     fluidLoad_.assign(2*solidNodes_.size(), 0);
@@ -628,7 +674,7 @@ Foam::elementModel::elementModel
     fluidStableDeltaT_(GREAT),
     solidStableDeltaT_(GREAT),
     previousSubStep_{0, 0},
-    extrapolateLoad_(false),
+    load_(subCycleLoad::held),
     haveFluidLoad_(false)
 {
     if (!density.empty() && label(density.size()) != mesh.nTriangles())
@@ -889,8 +935,11 @@ bool Foam::elementModel::advanceFluidPartition(const scalar dt)
     }
     // The fluid's load on the solid nodes and its rate from the last
     // fluid step (extrapolated load)
-    if (extrapolateLoad_)
+    if (load_ != subCycleLoad::held)
     {
+        // interpolated: the fluid elements' forces come from the
+        // sub-steps, the external forces are extrapolated
+        const bool withElements = load_ == subCycleLoad::extrapolated;
         const scalar previousDt = previousDeltaT_[cur_];
         const bool rate = haveFluidLoad_ && previousDt > 0;
         const scalar* force = elemForce_.data();
@@ -902,7 +951,7 @@ bool Foam::elementModel::advanceFluidPartition(const scalar dt)
             for (label j = nodeElemStart_[n]; j < nodeElemStart_[n + 1]; ++j)
             {
                 const label h = nodeElems_[j];
-                if (solidElement_[h/3]) continue;
+                if (!withElements || solidElement_[h/3]) continue;
                 F[0] += force[2*h];
                 F[1] += force[2*h + 1];
             }
@@ -947,12 +996,107 @@ void Foam::elementModel::setFluidLoad(const std::vector<scalar>& load)
 }
 
 
-bool Foam::elementModel::evaluateSolids()
+bool Foam::elementModel::evaluateSolids(const scalar elapsed)
 {
     failure_.clear();
     if (!elementPass(true)) return false;
     if (!domainPass(true)) return false;
     forcePass(true);
+    if (load_ == subCycleLoad::interpolated)
+    {
+        return evaluateInterfaceElements(elapsed);
+    }
+    return true;
+}
+
+
+bool Foam::elementModel::evaluateInterfaceElements(const scalar elapsed)
+{
+    // After advanceFluidPartition: the other buffer holds x^n, the
+    // current one the fluid nodes' v^{n+1/2} and the solid nodes' state
+    const scalar* xOld = x_[1 - cur_].data();
+    const scalar* x = x_[cur_].data();
+    const scalar* v = v_[cur_].data();
+    scalar* xs = subX_.data();
+    scalar* vs = subV_.data();
+    for (const label n : interfaceNodes_)
+    {
+        for (label c = 0; c < 2; ++c)
+        {
+            xs[2*n + c] =
+                solidNode_[n] ? x[2*n + c] : xOld[2*n + c] + elapsed*v[2*n + c];
+            vs[2*n + c] = v[2*n + c];
+        }
+    }
+    // The elements of the domains: current area and A_e grad v
+    bool ok = true;
+    for (const label el : interfaceDomainElems_)
+    {
+        const label* n = &elemNodes_[3*el];
+        scalar AgradN[6];
+        const scalar A = triangleAreaGradN
+        (
+            xs + 2*n[0], xs + 2*n[1], xs + 2*n[2], AgradN
+        );
+        elemArea_[el] = A;
+        ok = ok && A > 0;
+        areaGradient
+        (
+            AgradN, vs + 2*n[0], vs + 2*n[1], vs + 2*n[2], &elemAreaGrad_[4*el]
+        );
+    }
+    if (!ok)
+    {
+        failure_ =
+            "a fluid element next to a solid is inverted or degenerate (zero"
+            " or negative area) inside a sub-cycled step";
+        return false;
+    }
+    // Their domains: smoothed gradient, area and stress (eq. 2)
+    for (size_t i = 0; i < interfaceDomains_.size(); ++i)
+    {
+        const label k = interfaceDomains_[i];
+        const label e0 = domainElems_[2*k], e1 = domainElems_[2*k + 1];
+        scalar A = elemArea_[e0];
+        scalar g[4];
+        for (label j = 0; j < 4; ++j) g[j] = elemAreaGrad_[4*e0 + j];
+        if (e1 >= 0)
+        {
+            A += elemArea_[e1];
+            for (label j = 0; j < 4; ++j) g[j] += elemAreaGrad_[4*e1 + j];
+        }
+        for (label j = 0; j < 4; ++j) domainGrad_[4*k + j] = g[j]/A;
+        domainArea_[k] = A/3;
+        materials_[interfaceDomainRegion_[i]].stress
+        (
+            k, k + 1, domainGrad_.data(), domainArea_.data(),
+            domainMass_.data(), domainStress_.data()
+        );
+    }
+    // The forces of the elements with a solid node (eq. 5)
+    const scalar third = 1.0/3.0;
+    for (const label el : interfaceElems_)
+    {
+        const label* d = &elemDomains_[3*el];
+        scalar P[4];
+        for (label i = 0; i < 4; ++i)
+        {
+            P[i] = third*
+            (
+                domainStress_[4*d[0] + i] + domainStress_[4*d[1] + i]
+              + domainStress_[4*d[2] + i]
+            );
+        }
+        const label* n = &elemNodes_[3*el];
+        scalar AgradN[6];
+        triangleAreaGradN(xs + 2*n[0], xs + 2*n[1], xs + 2*n[2], AgradN);
+        scalar* f = &elemForce_[6*el];
+        for (label a = 0; a < 3; ++a)
+        {
+            f[2*a] = -(P[0]*AgradN[2*a] + P[1]*AgradN[2*a + 1]);
+            f[2*a + 1] = -(P[2]*AgradN[2*a] + P[3]*AgradN[2*a + 1]);
+        }
+    }
     return true;
 }
 
@@ -965,7 +1109,7 @@ bool Foam::elementModel::advanceSolidSubStep
 )
 {
     const bool first = elapsed == 0;
-    const bool extrapolate = extrapolateLoad_ && !first;
+    const bool extrapolate = load_ != subCycleLoad::held && !first;
     // In place: the other buffer holds the state at the start of the
     // fluid step (revert())
     scalar* x = x_[cur_].data();
