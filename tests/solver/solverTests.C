@@ -23,7 +23,13 @@ Description
                            in memory and written, is the previous step's,
                            elements, particles and mass, and restarts
     SolverRestart.*        a run continued from its latest time ends in
-                           the same state as a continuous run
+                           the same state as a continuous run (also with
+                           an elastic plate under the column whose
+                           sub-cycling state is part of the restart)
+    SolverSubCycling.*     the plate sub-cycles with subCycling on and the
+                           log says so; subCycling off takes one step and
+                           writes no sub-cycling state; without a solid
+                           subCycling on and off write the same files
     SolverSettledColumn.*  the column settled by damping: hydrostatic
                            pressure and wall force, through the function
                            objects
@@ -229,6 +235,30 @@ Foam::triMesh columnMesh(const int nx, const int ny)
 }
 
 
+//- The elastic plate under the column (addPlate): its thickness [m]
+const double plateThickness = 0.05;
+
+
+//- The water column on the plate: patches clamps (the plate's ends),
+//  plateBottom, walls (the water's sides), top
+Foam::triMesh plateColumnMesh(const int nx, const int ny)
+{
+    return testMeshes::build
+    (
+        {
+            {0, columnWidth, -plateThickness, 0, nx, 1, "plate"},
+            {0, columnWidth, 0, columnHeight, nx, ny, "water"}
+        },
+        testMeshes::split::alternating,
+        [](double, double my, double nx, double ny) -> std::string
+        {
+            if (std::abs(nx) > 0.5) return my < 0 ? "clamps" : "walls";
+            return ny < 0 ? "plateBottom" : "top";
+        }
+    );
+}
+
+
 //- Largest |a - b| over all components, relative to the largest |a|
 //  (defined below)
 double relativeDifference
@@ -301,6 +331,31 @@ protected:
 
     //- Mesh resolution
     int nx_ = nCellsX, ny_ = nCellsY;
+
+    //- The column stands on an elastic plate (addPlate())
+    bool plate_ = false;
+
+    //- Put the column on a plate clamped at both ends, 0.05 m thick, E
+    //  1 GPa, rho 2700 kg/m3: c_p 706 m/s, a stable step of about 6e-5 s
+    //  against the water's 2.9e-3 s (about 33 sub-steps of a 1 ms step
+    //  at maxCo 0.5)
+    void addPlate()
+    {
+        plate_ = true;
+        regions_ +=
+            "    plate\n"
+            "    {\n"
+            "        model   linearElastic;\n"
+            "        rho     2700;\n"
+            "        E       1e9;\n"
+            "        nu      0.3;\n"
+            "    }\n";
+        boundaries_ =
+            "    clamps      { type clamped; }\n"
+            "    plateBottom { type freeSurface; }\n"
+            "    walls       { type slipWall; }\n"
+            "    top         { type freeSurface; }\n";
+    }
 
 
     void SetUp() override
@@ -426,7 +481,8 @@ protected:
             Foam::fileName(caseDir_.parent_path().string()),
             Foam::fileName(caseName)
         );
-        columnMesh(nx_, ny_).write(runTime);
+        (plate_ ? plateColumnMesh(nx_, ny_) : columnMesh(nx_, ny_))
+            .write(runTime);
         ASSERT_TRUE(fs::exists(caseDir_/"constant"/"spemMesh"/"points"));
     }
 
@@ -1861,6 +1917,22 @@ TEST_F(SolverRestart, asciiRestartReproducesContinuousRunExactly)
 TEST_F(SolverRestart, binaryRestartReproducesContinuousRunExactly)
 {
     compareRestartedWithContinuous("binary");
+}
+
+
+TEST_F(SolverRestart, subCyclingPlateRestartsBitForBit)
+{
+    // The last sub-step of the plate is part of the state: without it the
+    // first sub-step after the restart would span another length
+    addPlate();
+    setControl("subCycling", "on");
+    compareRestartedWithContinuous("ascii", 0);
+    if (HasFailure()) return;
+    const std::string step = readText(caseDir_/"0.1"/"spem"/"timeStep");
+    EXPECT_TRUE(contains(step, "previousSubStep")) << step;
+    // And the fluid's load of the last step, for the extrapolated load
+    EXPECT_TRUE(fs::exists(caseDir_/"0.1"/"spem"/"solidFluidLoad"));
+    EXPECT_TRUE(contains(log("log.spemFoam.restart"), "solids sub-cycle"));
 }
 
 
@@ -4009,6 +4081,142 @@ TEST_F(SolverTank, badWallRestitutionStopsNamingIt)
     edit(rigidBodies_, "motion free;", "motion free; wallRestitution 1.5;");
     const std::string text = runExpectingFatalError();
     expectInLog(text, {"FATAL IO ERROR", "wallRestitution", "[0, 1]"});
+}
+
+
+// * * * * * * * * * * * * * * * * Sub-cycling  * * * * * * * * * * * * * * //
+
+//- Fixture: the sub-cycling of the plate under the column
+class SolverSubCycling : public Solver
+{
+protected:
+
+    //- The number of sub-steps of the last "solid sub-steps = n" of a log
+    //  (0 if none)
+    static int lastSubSteps(const std::string& text)
+    {
+        const std::regex entry("solid sub-steps = ([0-9]+)");
+        int n = 0;
+        for
+        (
+            auto it = std::sregex_iterator(text.begin(), text.end(), entry);
+            it != std::sregex_iterator();
+            ++it
+        )
+        {
+            n = std::stoi((*it)[1].str());
+        }
+        return n;
+    }
+
+    //- Every file the run wrote below a case folder but the logs (relative
+    //  path, contents), in order
+    static std::vector<std::pair<std::string, std::string>> writtenFiles
+    (
+        const fs::path& dir
+    )
+    {
+        std::vector<std::pair<std::string, std::string>> files;
+        for (const fs::directory_entry& e : fs::recursive_directory_iterator(dir))
+        {
+            if (!e.is_regular_file()) continue;
+            const std::string rel = fs::relative(e.path(), dir).string();
+            if (rel.rfind("log.", 0) == 0 || rel.rfind("system", 0) == 0)
+            {
+                continue;
+            }
+            files.emplace_back(rel, readText(e.path()));
+        }
+        std::sort(files.begin(), files.end());
+        return files;
+    }
+};
+
+
+TEST_F(SolverSubCycling, plateSubCyclesAndTheLogSaysWhy)
+{
+    addPlate();
+    setControl("subCycling", "on");
+    setControl("endTime", "0.01");
+    const std::string text = runExpectingSuccess();
+    if (HasFailure()) return;
+    // The fluid's step, the plate's sub-steps and what sets them
+    EXPECT_TRUE
+    (
+        contains(text, "set by the acoustic limit of the elements of region water")
+    ) << text;
+    EXPECT_TRUE
+    (
+        contains(text, "solids sub-cycle (subCycling on, load interpolated)")
+    ) << text;
+    EXPECT_TRUE
+    (
+        contains(text, "solid wave speed limit of the elements of region plate")
+    ) << text;
+    const int n = lastSubSteps(text);
+    std::cout << "plate under the column: " << n << " sub-steps" << std::endl;
+    // ceil(1 ms/(0.5 x 6.1e-5 s))
+    EXPECT_GE(n, 25);
+    EXPECT_LE(n, 40);
+    const std::string step = readText(caseDir_/"0.01"/"spem"/"timeStep");
+    EXPECT_TRUE(contains(step, "previousSubStep")) << step;
+    EXPECT_TRUE(fs::exists(caseDir_/"0.01"/"spem"/"solidFluidLoad"));
+
+    // subCyclingLoad: held or extrapolated
+    setControl("subCyclingLoad", "held");
+    const std::string held = runExpectingSuccess();
+    EXPECT_TRUE(contains(held, "load held")) << held;
+    EXPECT_FALSE(fs::exists(caseDir_/"0.01"/"spem"/"solidFluidLoad"));
+    setControl("subCyclingLoad", "lagged");
+    const std::string refused = runExpectingFatalError();
+    EXPECT_TRUE(contains(refused, "subCyclingLoad lagged")) << refused;
+}
+
+
+TEST_F(SolverSubCycling, offTakesOneStepAndWritesNoSubCyclingState)
+{
+    addPlate();
+    setControl("subCycling", "off");
+    // One step for all: within maxCo 0.5 of the plate's 6.1e-5 s
+    setControl("deltaT", "2e-5");
+    setControl("endTime", "0.002");
+    setControl("writeInterval", "50");
+    setControl("logInterval", "50");
+    const std::string text = runExpectingSuccess();
+    if (HasFailure()) return;
+    EXPECT_TRUE(contains(text, "solids: no sub-cycling (subCycling off)"))
+        << text;
+    EXPECT_EQ(lastSubSteps(text), 0) << text;
+    const std::string step = readText(caseDir_/"0.002"/"spem"/"timeStep");
+    EXPECT_FALSE(contains(step, "previousSubStep")) << step;
+
+    // The fluid's step is refused for the plate without sub-cycling
+    setControl("deltaT", "1e-3");
+    const std::string refused = runExpectingFatalError();
+    EXPECT_TRUE(contains(refused, "exceeds the stable time step")) << refused;
+}
+
+
+TEST_F(SolverSubCycling, withoutASolidOnAndOffWriteTheSameFiles)
+{
+    setControl("endTime", "0.05");
+    setControl("subCycling", "on");
+    const std::string on = runExpectingSuccess();
+    if (HasFailure()) return;
+    const fs::path caseOn = caseDir_;
+    setControl("subCycling", "off");
+    const std::string off = runExpectingSuccess();
+    if (HasFailure()) return;
+    EXPECT_FALSE(contains(on, "sub-cycl")) << on;
+    EXPECT_EQ(lastSubSteps(on), 0);
+    const auto a = writtenFiles(caseOn), b = writtenFiles(caseDir_);
+    ASSERT_EQ(a.size(), b.size());
+    ASSERT_GT(a.size(), 5u);
+    for (std::size_t i = 0; i < a.size(); ++i)
+    {
+        EXPECT_EQ(a[i].first, b[i].first);
+        EXPECT_TRUE(a[i].second == b[i].second) << a[i].first << " differs";
+    }
 }
 
 

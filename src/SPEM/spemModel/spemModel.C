@@ -471,6 +471,7 @@ Foam::spemModel::spemModel(Time& runTime)
     );
     method_ = spemMethod::New(*case_, materials);
     method_->setUpWalls();
+    method_->restoreSubCyclingLoad();
     // The bodies as given (t = 0), before a restart moves them
     checkBodiesAtStart();
 

@@ -123,7 +123,18 @@ bool Foam::wallContact::correctStructures
     const scalar dt
 )
 {
-    structureForce_[0] = structureForce_[1] = 0;
+    return correctStructures(elements, dt, true);
+}
+
+
+bool Foam::wallContact::correctStructures
+(
+    elementModel& elements,
+    const scalar dt,
+    const bool first
+)
+{
+    if (first) structureForce_[0] = structureForce_[1] = 0;
     nNodeContacts_ = 0;
     const std::vector<scalar>& x = elements.positions();
     const std::vector<scalar>& v = elements.velocities();

@@ -47,7 +47,7 @@ void Foam::timeStepControl::checkControlDict() const
             "fileHandler", "DebugSwitches", "InfoSwitches",
             "OptimisationSwitches", "DimensionSets", "DimensionedConstants",
             "Tolerances", "logInterval", "maxSteps", "restartFallback",
-            "allowMaxCoAbove1"
+            "allowMaxCoAbove1", "subCycling", "subCyclingLoad"
         }
     );
 
@@ -109,6 +109,12 @@ Foam::scalar Foam::timeStepControl::stepToWriteTime(const scalar dt) const
 
 // * * * * * * * * * * * * * * * Static Functions  * * * * * * * * * * * * * //
 
+Foam::scalar Foam::timeStepControl::readMaxCo(const dictionary& controlDict)
+{
+    return getCheckedOrDefault(controlDict, "maxCo", 0.9, maxCoRange);
+}
+
+
 void Foam::timeStepControl::checkBeforeTime(const fileName& casePath)
 {
     // OpenFOAM's Time divides by both while it is constructed: a zero
@@ -140,10 +146,7 @@ Foam::timeStepControl::timeStepControl(Time& runTime)
     (
         runTime.controlDict().getOrDefault<Switch>("adjustTimeStep", false)
     ),
-    maxCo_
-    (
-        getCheckedOrDefault(runTime.controlDict(), "maxCo", 0.9, maxCoRange)
-    ),
+    maxCo_(readMaxCo(runTime.controlDict())),
     maxDeltaT_
     (
         getCheckedOrDefault

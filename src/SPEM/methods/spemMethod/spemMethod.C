@@ -74,7 +74,12 @@ void Foam::spemMethod::createElementHalf
     if (case_.restart.readElements(*elements_))
     {
         elements_->setPreviousDeltaT(case_.restart.readPreviousDeltaT());
+        // The solids' last sub-step, if they sub-cycled (else it was the
+        // step)
+        const scalar subStep = case_.restart.readPreviousSubStep();
+        if (subStep >= 0) elements_->setPreviousSubStep(subStep);
     }
+    elements_->setSubCycleLoad(subCycling_.load());
 }
 
 
@@ -529,7 +534,9 @@ Foam::spemMethod::spemMethod(const spemCase& c)
     particlesAdvanced_(false),
     nOutsideToWarn_(0),
     machToWarn_(0.1),
-    evaluationsSinceMachCheck_(machCheckInterval - 1)
+    evaluationsSinceMachCheck_(machCheckInterval - 1),
+    subCycling_(c.runTime.controlDict()),
+    lastSubSteps_(1)
 {}
 
 
@@ -564,20 +571,68 @@ void Foam::spemMethod::setUpWalls()
 }
 
 
+void Foam::spemMethod::restoreSubCyclingLoad()
+{
+    std::vector<scalar> load;
+    if (elements_ && case_.restart.readSolidFluidLoad(load))
+    {
+        elements_->setFluidLoad(load);
+    }
+}
+
+
+bool Foam::spemMethod::advanceElements(const scalar dt)
+{
+    lastSubSteps_ = solidSubSteps(dt);
+    if (lastSubSteps_ == 1)
+    {
+        if (!elements_->advance(dt))
+        {
+            return fail(elements_->failure(), unstableHint);
+        }
+        if (!contact_->correctStructures(*elements_, dt))
+        {
+            return fail(contact_->failure(), unstableHint);
+        }
+        return true;
+    }
+
+    // The fluid nodes by dt; the solid nodes in n sub-steps, the solid
+    // elements' forces evaluated at each, the fluid's load (the fluid
+    // elements' forces on the shared nodes, the particles' through the
+    // virtual particles) that of the last evaluation, held
+    if (!elements_->advanceFluidPartition(dt))
+    {
+        return fail(elements_->failure(), unstableHint);
+    }
+    const label n = lastSubSteps_;
+    const scalar subDt = dt/n;
+    for (label k = 0; k < n; ++k)
+    {
+        if (k > 0 && !elements_->evaluateSolids(k*subDt))
+        {
+            return fail(elements_->failure(), unstableHint);
+        }
+        if (!elements_->advanceSolidSubStep(subDt, k*subDt, dt))
+        {
+            return fail(elements_->failure(), unstableHint);
+        }
+        if (!contact_->correctStructures(*elements_, dt, k == 0))
+        {
+            return fail(contact_->failure(), unstableHint);
+        }
+    }
+    return true;
+}
+
+
 bool Foam::spemMethod::advance(const scalar dt)
 {
     // The last evaluation succeeded: nothing of it is undone any more
     checkpoint_.recorded = false;
     particlesAdvanced_ = false;
     callHooks(&spemCoupling::beforeElementAdvance);
-    if (elements_ && !elements_->advance(dt))
-    {
-        return fail(elements_->failure(), unstableHint);
-    }
-    if (elements_ && !contact_->correctStructures(*elements_, dt))
-    {
-        return fail(contact_->failure(), unstableHint);
-    }
+    if (elements_ && !advanceElements(dt)) return false;
     callHooks(&spemCoupling::afterElementAdvance);
     particlesAdvanced_ = bool(particles_);
     if (particles_ && !particles_->advance(dt))
@@ -694,34 +749,52 @@ void Foam::spemMethod::revertToLastGood()
 }
 
 
+void Foam::spemMethod::describeElementLimit
+(
+    std::ostream& os,
+    const stepLimit& l
+) const
+{
+    const spemMaterial& mat = elements_->material(l.region);
+    os  << "the " << stepLimit::name(l.which) << " limit of the elements"
+        << " of region " << elements_->regions()[l.region].name << ": ";
+    switch (l.which)
+    {
+        case stepLimit::criterion::acoustic:
+            os  << "h/c with c " << mat.waveSpeed() << " m/s (entry c)";
+            break;
+        case stepLimit::criterion::viscous:
+            os  << "0.25 h^2 rho/mu with mu "
+                << mat.rho()*mat.kinematicViscosity() << " Pa s, rho "
+                << mat.rho() << " kg/m3 (entries mu, rho)";
+            break;
+        default:
+            os  << "h/c_p with the longitudinal wave speed c_p "
+                << mat.waveSpeed() << " m/s at rest (entries E, nu, rho)";
+            break;
+    }
+    if (l.length > 0) os << ", smallest altitude h " << l.length << " m";
+}
+
+
 std::string Foam::spemMethod::stableStepLimit() const
 {
     std::ostringstream os;
+    // With the solids sub-cycling the step is the fluid's
+    const bool sub = subCycles();
+    const stepLimit* elementLimit =
+        !elements_ ? nullptr
+      : sub ? &elements_->fluidStableLimit() : &elements_->stableLimit();
     const bool fromElements =
         elements_
-     && (!particles_ || elements_->stableDeltaT() <= particles_->stableDeltaT());
-    if (fromElements && elements_->stableLimit().region >= 0)
+     && (
+            !particles_
+         || (sub ? elements_->fluidStableDeltaT() : elements_->stableDeltaT())
+         <= particles_->stableDeltaT()
+        );
+    if (fromElements && elementLimit->region >= 0)
     {
-        const stepLimit& l = elements_->stableLimit();
-        const spemMaterial& mat = elements_->material(l.region);
-        os  << "the " << stepLimit::name(l.which) << " limit of the elements"
-            << " of region " << elements_->regions()[l.region].name << ": ";
-        switch (l.which)
-        {
-            case stepLimit::criterion::acoustic:
-                os  << "h/c with c " << mat.waveSpeed() << " m/s (entry c)";
-                break;
-            case stepLimit::criterion::viscous:
-                os  << "0.25 h^2 rho/mu with mu "
-                    << mat.rho()*mat.kinematicViscosity() << " Pa s, rho "
-                    << mat.rho() << " kg/m3 (entries mu, rho)";
-                break;
-            default:
-                os  << "h/c_p with the longitudinal wave speed c_p "
-                    << mat.waveSpeed() << " m/s at rest (entries E, nu, rho)";
-                break;
-        }
-        if (l.length > 0) os << ", smallest altitude h " << l.length << " m";
+        describeElementLimit(os, *elementLimit);
     }
     else if (particles_ && particles_->stableLimit().which != stepLimit::criterion::none)
     {
@@ -749,12 +822,66 @@ std::string Foam::spemMethod::stableStepLimit() const
     {
         os  << "no limit (no elements or particles)";
     }
+
+    // What the solids do
+    if (sub)
+    {
+        const scalar solid = elements_->solidStableDeltaT();
+        os  << "\n    solids sub-cycle (subCycling on, load "
+            << subCycling_.loadName()
+            << "): ceil(deltaT/(maxCo dt_s)) sub-steps per step, "
+            << subCycling_.subSteps(subCycling_.maxCo()*stableDeltaT(), solid)
+            << " at maxCo times the stable step; the solids' stable step dt_s "
+            << solid << " s is set by ";
+        describeElementLimit(os, elements_->solidStableLimit());
+    }
+    else if
+    (
+        elements_ && elements_->nSolidNodes() > 0
+     && fluidStableDeltaT() < GREAT
+    )
+    {
+        os  << "\n    solids: no sub-cycling ("
+            << (
+                   subCycling_.enabled()
+                 ? "their stable step is more than half the fluid's"
+                 : "subCycling off"
+               )
+            << ")";
+    }
     return os.str();
+}
+
+
+Foam::scalar Foam::spemMethod::fluidStableDeltaT() const
+{
+    scalar dt = GREAT;
+    if (elements_) dt = min(dt, elements_->fluidStableDeltaT());
+    if (particles_) dt = min(dt, particles_->stableDeltaT());
+    return dt;
+}
+
+
+bool Foam::spemMethod::subCycles() const
+{
+    return
+        elements_ && elements_->nSolidNodes() > 0
+     && subCycling_.active(fluidStableDeltaT(), elements_->solidStableDeltaT());
+}
+
+
+Foam::label Foam::spemMethod::solidSubSteps(const scalar dt) const
+{
+    return
+        subCycles()
+      ? subCycling_.subSteps(dt, elements_->solidStableDeltaT())
+      : 1;
 }
 
 
 Foam::scalar Foam::spemMethod::stableDeltaT() const
 {
+    if (subCycles()) return fluidStableDeltaT();
     scalar dt = GREAT;
     if (elements_) dt = min(dt, elements_->stableDeltaT());
     if (particles_) dt = min(dt, particles_->stableDeltaT());
@@ -785,6 +912,19 @@ Foam::restartState::content Foam::spemMethod::state() const
         elements_
       ? elements_->previousDeltaT()
       : particles_ ? particles_->previousDeltaT() : -1;
+    // The solids' last sub-step (bit-identical restarts), if they
+    // sub-cycled in the last step: otherwise it is previousDeltaT and the
+    // state is the one written without sub-cycling
+    if
+    (
+        elements_ && elements_->nSolidNodes() > 0
+     && elements_->previousSubStep() != elements_->previousDeltaT()
+    )
+    {
+        c.previousSubStep = elements_->previousSubStep();
+        solidFluidLoad_ = elements_->fluidLoad();
+        c.solidFluidLoad = &solidFluidLoad_;
+    }
     return c;
 }
 
@@ -875,6 +1015,10 @@ void Foam::spemMethod::report(Ostream& os) const
             << ", force on walls = (" << f[0] << ' ' << f[1] << ')';
     }
     reportInterface(os);
+    if (lastSubSteps_ > 1)
+    {
+        os  << ", solid sub-steps = " << lastSubSteps_;
+    }
     if (structureCoupling_)
     {
         const scalar* f = structureCoupling_->force();

@@ -91,6 +91,86 @@ void Foam::elementModel::build(const triMesh& mesh)
     numberDomains(mesh, regionDomains);
     buildNodeElements();
     buildReferenceGeometry();
+    buildSolidPartition();
+}
+
+
+void Foam::elementModel::buildSolidPartition()
+{
+    solidNode_.assign(nNodes_, 0);
+    for (label r = 0; r < regions_.size(); ++r)
+    {
+        if (!materials_.set(r) || materials_[r].isFluid()) continue;
+        for (label el = regions_[r].elemBegin; el < regions_[r].elemEnd; ++el)
+        {
+            for (label a = 0; a < 3; ++a) solidNode_[elemNodes_[3*el + a]] = 1;
+        }
+    }
+    solidNodes_.clear();
+    for (label n = 0; n < nNodes_; ++n)
+    {
+        if (solidNode_[n]) solidNodes_.push_back(n);
+    }
+    solidElement_.assign(elemTriangle_.size(), 0);
+    for (label r = 0; r < regions_.size(); ++r)
+    {
+        if (!materials_.set(r) || materials_[r].isFluid()) continue;
+        for (label el = regions_[r].elemBegin; el < regions_[r].elemEnd; ++el)
+        {
+            solidElement_[el] = 1;
+        }
+    }
+    // interpolated: the fluid elements with a solid node, their domains and
+    // the elements and nodes these need
+    interfaceElems_.clear();
+    interfaceDomains_.clear();
+    interfaceDomainRegion_.clear();
+    interfaceDomainElems_.clear();
+    interfaceNodes_.clear();
+    std::vector<char> domainIn(domainArea_.size(), 0);
+    std::vector<char> elemIn(elemTriangle_.size(), 0), nodeIn(nNodes_, 0);
+    for (label r = 0; r < regions_.size(); ++r)
+    {
+        if (!materials_.set(r) || !materials_[r].isFluid()) continue;
+        for (label el = regions_[r].elemBegin; el < regions_[r].elemEnd; ++el)
+        {
+            const label* en = &elemNodes_[3*el];
+            if (!solidNode_[en[0]] && !solidNode_[en[1]] && !solidNode_[en[2]])
+            {
+                continue;
+            }
+            interfaceElems_.push_back(el);
+            for (label i = 0; i < 3; ++i)
+            {
+                const label k = elemDomains_[3*el + i];
+                if (domainIn[k]) continue;
+                domainIn[k] = 1;
+                interfaceDomains_.push_back(k);
+                interfaceDomainRegion_.push_back(r);
+                for (label side = 0; side < 2; ++side)
+                {
+                    const label e = domainElems_[2*k + side];
+                    if (e < 0 || elemIn[e]) continue;
+                    elemIn[e] = 1;
+                    interfaceDomainElems_.push_back(e);
+                    for (label a = 0; a < 3; ++a)
+                    {
+                        const label n = elemNodes_[3*e + a];
+                        if (!nodeIn[n]) interfaceNodes_.push_back(n);
+                        nodeIn[n] = 1;
+                    }
+                }
+            }
+        }
+    }
+    subX_.assign(2*nNodes_, 0);
+    subV_.assign(2*nNodes_, 0);
+
+    // The fluid's load jumps where fluid elements became particles: its
+    // rate starts again
+    fluidLoad_.assign(2*solidNodes_.size(), 0);
+    fluidLoadRate_.assign(2*solidNodes_.size(), 0);
+    haveFluidLoad_ = false;
 }
 
 
@@ -310,18 +390,21 @@ void Foam::elementModel::buildReferenceGeometry()
 }
 
 
-bool Foam::elementModel::elementPass()
+bool Foam::elementModel::elementPass(const bool solidsOnly)
 {
     const scalar* x = x_[cur_].data();
     const scalar* v = v_[cur_].data();
     bool ok = true;
     scalar timeScale = solidTimeScale_;
     stepLimit limit = solidLimit_;
+    // The halves' own limits, for the solid sub-cycling
+    stepLimit fluidLimit, solidLimit = solidLimit_;
 
     for (label r = 0; r < regions_.size(); ++r)
     {
         if (!materials_.set(r)) continue;   // void: no elements
         const spemMaterial& mat = materials_[r];
+        if (solidsOnly && mat.isFluid()) continue;
         const label begin = regions_[r].elemBegin, end = regions_[r].elemEnd;
         // A fluid region may have become particles entirely
         if (begin == end) continue;
@@ -361,11 +444,19 @@ bool Foam::elementModel::elementPass()
             }
             timeScale = std::min(timeScale, hMin/c);
             limit.keepSmaller(stepLimit::criterion::acoustic, hMin/c, r, hMin);
+            fluidLimit.keepSmaller
+            (
+                stepLimit::criterion::acoustic, hMin/c, r, hMin
+            );
             // Explicit viscous diffusion limit
             if (nu > 0)
             {
                 timeScale = std::min(timeScale, 0.25*hMin*hMin/nu);
                 limit.keepSmaller
+                (
+                    stepLimit::criterion::viscous, 0.25*hMin*hMin/nu, r, hMin
+                );
+                fluidLimit.keepSmaller
                 (
                     stepLimit::criterion::viscous, 0.25*hMin*hMin/nu, r, hMin
                 );
@@ -440,6 +531,11 @@ bool Foam::elementModel::elementPass()
                     stepLimit::criterion::solidWave,
                     std::sqrt(4*mat.rho()*minRatio), r, 0
                 );
+                solidLimit.keepSmaller
+                (
+                    stepLimit::criterion::solidWave,
+                    std::sqrt(4*mat.rho()*minRatio), r, 0
+                );
             }
             if (!regionOk)
             {
@@ -449,18 +545,28 @@ bool Foam::elementModel::elementPass()
             }
         }
     }
+    if (solidsOnly) return ok;
     stableDeltaT_ = timeScale;
     stableLimit_ = limit;
+    fluidStableLimit_ = fluidLimit;
+    solidStableLimit_ = solidLimit;
+    fluidStableDeltaT_ =
+        fluidLimit.which == stepLimit::criterion::none
+      ? GREAT : fluidLimit.deltaT;
+    solidStableDeltaT_ =
+        solidLimit.which == stepLimit::criterion::none
+      ? GREAT : solidLimit.deltaT;
     return ok;
 }
 
 
-bool Foam::elementModel::domainPass()
+bool Foam::elementModel::domainPass(const bool solidsOnly)
 {
     bool ok = true;
     for (label r = 0; r < regions_.size(); ++r)
     {
         if (!materials_.set(r)) continue;   // void: no elements
+        if (solidsOnly && materials_[r].isFluid()) continue;
         const label begin = regions_[r].domainBegin, end = regions_[r].domainEnd;
         const bool fluid = materials_[r].isFluid();
 
@@ -500,13 +606,14 @@ bool Foam::elementModel::domainPass()
 }
 
 
-void Foam::elementModel::forcePass()
+void Foam::elementModel::forcePass(const bool solidsOnly)
 {
     const scalar third = 1.0/3.0;
 
     for (label r = 0; r < regions_.size(); ++r)
     {
         if (!materials_.set(r)) continue;   // void: no elements
+        if (solidsOnly && materials_[r].isFluid()) continue;
         // Current configuration for fluids, reference for solids
         const scalar* x =
             materials_[r].isFluid() ? x_[cur_].data() : X_.data();
@@ -563,7 +670,12 @@ Foam::elementModel::elementModel
     gravity_{0, 0},
     massDamping_(0),
     solidTimeScale_(0),
-    stableDeltaT_(0)
+    stableDeltaT_(0),
+    fluidStableDeltaT_(GREAT),
+    solidStableDeltaT_(GREAT),
+    previousSubStep_{0, 0},
+    load_(subCycleLoad::held),
+    haveFluidLoad_(false)
 {
     if (!density.empty() && label(density.size()) != mesh.nTriangles())
     {
@@ -668,14 +780,84 @@ bool Foam::elementModel::evaluate()
 }
 
 
+inline bool Foam::elementModel::integrateNode
+(
+    const label n,
+    const scalar* x,
+    const scalar* v,
+    scalar* xNew,
+    scalar* vNew,
+    const scalar span,
+    const scalar keep,
+    const scalar gain,
+    const scalar dt,
+    scalar* reaction,
+    const scalar* extraForce
+) const
+{
+    const scalar* force = elemForce_.data();
+    const scalar* external = externalForce_.data();
+    scalar f[2] = {external[2*n], external[2*n + 1]};
+    if (extraForce)
+    {
+        f[0] += extraForce[0];
+        f[1] += extraForce[1];
+    }
+    for (label j = nodeElemStart_[n]; j < nodeElemStart_[n + 1]; ++j)
+    {
+        const label h = nodeElems_[j];
+        f[0] += force[2*h];
+        f[1] += force[2*h + 1];
+    }
+    const scalar invM = 1/nodeMass_[n];
+    scalar vn[2] =
+    {
+        keep*v[2*n] + gain*(f[0]*invM + gravity_[0]),
+        keep*v[2*n + 1] + gain*(f[1]*invM + gravity_[1])
+    };
+    if (nodeConstraint_[n] != constraint::free)
+    {
+        const scalar vFree[2] = {vn[0], vn[1]};
+        if (nodeConstraint_[n] == constraint::slip)
+        {
+            const scalar* nn = &nodeNormal_[2*n];
+            const scalar vnn =
+                vn[0]*nn[0] + vn[1]*nn[1] - nodeNormalSpeed_[n];
+            vn[0] -= vnn*nn[0];
+            vn[1] -= vnn*nn[1];
+            // A fixed no-slip wall's shear, -k v_t, implicit over the
+            // span: stable for any k (patchConditions)
+            if (!wallFriction_.empty() && wallFriction_[n] > 0)
+            {
+                const scalar hold =
+                    1/(1 + span*wallFriction_[n]*invM);
+                vn[0] *= hold;
+                vn[1] *= hold;
+            }
+        }
+        else
+        {
+            vn[0] = vn[1] = 0;
+        }
+        // The force that removed the constrained velocity
+        const scalar mOverGain = nodeMass_[n]/gain;
+        reaction[0] = mOverGain*(vn[0] - vFree[0]);
+        reaction[1] = mOverGain*(vn[1] - vFree[1]);
+    }
+    vNew[2*n] = vn[0];
+    vNew[2*n + 1] = vn[1];
+    xNew[2*n] = x[2*n] + dt*vn[0];
+    xNew[2*n + 1] = x[2*n + 1] + dt*vn[1];
+    return std::isfinite(vn[0]) && std::isfinite(vn[1]);
+}
+
+
 bool Foam::elementModel::advance(const scalar dt)
 {
     const scalar* x = x_[cur_].data();
     const scalar* v = v_[cur_].data();
     scalar* xNew = x_[1 - cur_].data();
     scalar* vNew = v_[1 - cur_].data();
-    const scalar* force = elemForce_.data();
-    const scalar gx = gravity_[0], gy = gravity_[1];
     // The velocity spans dt^n = (dt^{n-1/2} + dt^{n+1/2})/2, from the
     // half step before to the half step after the forces' time.
     // Implicit mass-proportional damping: stable for any alpha dt
@@ -684,7 +866,6 @@ bool Foam::elementModel::advance(const scalar dt)
     bool finite = true;
 
     scalar* reaction = nodeReaction_.data();
-    const scalar* external = externalForce_.data();
 
     // Performance critical: every node, every step
     #pragma omp parallel for schedule(static) reduction(&&: finite) if(nNodes_ > minParallelLoop)
@@ -698,56 +879,274 @@ bool Foam::elementModel::advance(const scalar dt)
             xNew[2*n + 1] = x[2*n + 1];
             continue;
         }
-        scalar f[2] = {external[2*n], external[2*n + 1]};
-        for (label j = nodeElemStart_[n]; j < nodeElemStart_[n + 1]; ++j)
-        {
-            const label h = nodeElems_[j];
-            f[0] += force[2*h];
-            f[1] += force[2*h + 1];
-        }
-        const scalar invM = 1/nodeMass_[n];
-        scalar vn[2] =
-        {
-            keep*v[2*n] + gain*(f[0]*invM + gx),
-            keep*v[2*n + 1] + gain*(f[1]*invM + gy)
-        };
-        if (nodeConstraint_[n] != constraint::free)
-        {
-            const scalar vFree[2] = {vn[0], vn[1]};
-            if (nodeConstraint_[n] == constraint::slip)
-            {
-                const scalar* nn = &nodeNormal_[2*n];
-                const scalar vnn =
-                    vn[0]*nn[0] + vn[1]*nn[1] - nodeNormalSpeed_[n];
-                vn[0] -= vnn*nn[0];
-                vn[1] -= vnn*nn[1];
-                // A fixed no-slip wall's shear, -k v_t, implicit over the
-                // span: stable for any k (patchConditions)
-                if (!wallFriction_.empty() && wallFriction_[n] > 0)
-                {
-                    const scalar hold =
-                        1/(1 + span*wallFriction_[n]*invM);
-                    vn[0] *= hold;
-                    vn[1] *= hold;
-                }
-            }
-            else
-            {
-                vn[0] = vn[1] = 0;
-            }
-            // The force that removed the constrained velocity
-            const scalar mOverGain = nodeMass_[n]/gain;
-            reaction[2*n] = mOverGain*(vn[0] - vFree[0]);
-            reaction[2*n + 1] = mOverGain*(vn[1] - vFree[1]);
-        }
-        vNew[2*n] = vn[0];
-        vNew[2*n + 1] = vn[1];
-        xNew[2*n] = x[2*n] + dt*vn[0];
-        xNew[2*n + 1] = x[2*n + 1] + dt*vn[1];
-        finite = finite && std::isfinite(vn[0]) && std::isfinite(vn[1]);
+        const bool ok =
+            integrateNode
+            (
+                n, x, v, xNew, vNew, span, keep, gain, dt, reaction + 2*n
+            );
+        finite = finite && ok;
     }
     cur_ = 1 - cur_;
     previousDeltaT_[cur_] = dt;
+    previousSubStep_[cur_] = dt;
+    // A step without sub-steps: the next sub-cycled one starts the
+    // extrapolated load again
+    haveFluidLoad_ = false;
+    if (!finite)
+    {
+        failure_ = "a node velocity is not finite";
+        return false;
+    }
+    return true;
+}
+
+
+bool Foam::elementModel::advanceFluidPartition(const scalar dt)
+{
+    const scalar* x = x_[cur_].data();
+    const scalar* v = v_[cur_].data();
+    scalar* xNew = x_[1 - cur_].data();
+    scalar* vNew = v_[1 - cur_].data();
+    const scalar span = 0.5*(previousDeltaT_[cur_] + dt);
+    const scalar keep = 1/(1 + massDamping_*span), gain = span*keep;
+    bool finite = true;
+    scalar* reaction = nodeReaction_.data();
+
+    // Performance critical: every node, every fluid step
+    #pragma omp parallel for schedule(static) reduction(&&: finite) if(nNodes_ > minParallelLoop)
+    for (label n = 0; n < nNodes_; ++n)
+    {
+        // The solid partition keeps its state for the sub-steps; a node
+        // without elements stays where it is
+        if (solidNode_[n] || nodeMass_[n] == 0)
+        {
+            vNew[2*n] = solidNode_[n] ? v[2*n] : 0;
+            vNew[2*n + 1] = solidNode_[n] ? v[2*n + 1] : 0;
+            xNew[2*n] = x[2*n];
+            xNew[2*n + 1] = x[2*n + 1];
+            continue;
+        }
+        const bool ok =
+            integrateNode
+            (
+                n, x, v, xNew, vNew, span, keep, gain, dt, reaction + 2*n
+            );
+        finite = finite && ok;
+    }
+    // The fluid's load on the solid nodes and its rate from the last
+    // fluid step (extrapolated load)
+    if (load_ != subCycleLoad::held)
+    {
+        // interpolated: the fluid elements' forces come from the
+        // sub-steps, the external forces are extrapolated
+        const bool withElements = load_ == subCycleLoad::extrapolated;
+        const scalar previousDt = previousDeltaT_[cur_];
+        const bool rate = haveFluidLoad_ && previousDt > 0;
+        const scalar* force = elemForce_.data();
+        const scalar* external = externalForce_.data();
+        for (size_t i = 0; i < solidNodes_.size(); ++i)
+        {
+            const label n = solidNodes_[i];
+            scalar F[2] = {external[2*n], external[2*n + 1]};
+            for (label j = nodeElemStart_[n]; j < nodeElemStart_[n + 1]; ++j)
+            {
+                const label h = nodeElems_[j];
+                if (!withElements || solidElement_[h/3]) continue;
+                F[0] += force[2*h];
+                F[1] += force[2*h + 1];
+            }
+            for (label c = 0; c < 2; ++c)
+            {
+                fluidLoadRate_[2*i + c] =
+                    rate ? (F[c] - fluidLoad_[2*i + c])/previousDt : 0;
+                fluidLoad_[2*i + c] = F[c];
+            }
+        }
+        haveFluidLoad_ = true;
+    }
+
+    const scalar subStep = previousSubStep_[cur_];
+    cur_ = 1 - cur_;
+    previousDeltaT_[cur_] = dt;
+    previousSubStep_[cur_] = subStep;
+    if (!finite)
+    {
+        failure_ = "a node velocity is not finite";
+        return false;
+    }
+    return true;
+}
+
+
+void Foam::elementModel::setFluidLoad(const std::vector<scalar>& load)
+{
+    if (load.empty())
+    {
+        haveFluidLoad_ = false;
+        return;
+    }
+    if (load.size() != fluidLoad_.size())
+    {
+        FatalErrorInFunction
+            << "The fluid's load of " << load.size()/2 << " solid nodes for "
+            << solidNodes_.size() << exit(FatalError);
+    }
+    fluidLoad_ = load;
+    haveFluidLoad_ = true;
+}
+
+
+bool Foam::elementModel::evaluateSolids(const scalar elapsed)
+{
+    failure_.clear();
+    if (!elementPass(true)) return false;
+    if (!domainPass(true)) return false;
+    forcePass(true);
+    if (load_ == subCycleLoad::interpolated)
+    {
+        return evaluateInterfaceElements(elapsed);
+    }
+    return true;
+}
+
+
+bool Foam::elementModel::evaluateInterfaceElements(const scalar elapsed)
+{
+    // After advanceFluidPartition: the other buffer holds x^n, the
+    // current one the fluid nodes' v^{n+1/2} and the solid nodes' state
+    const scalar* xOld = x_[1 - cur_].data();
+    const scalar* x = x_[cur_].data();
+    const scalar* v = v_[cur_].data();
+    scalar* xs = subX_.data();
+    scalar* vs = subV_.data();
+    for (const label n : interfaceNodes_)
+    {
+        for (label c = 0; c < 2; ++c)
+        {
+            xs[2*n + c] =
+                solidNode_[n] ? x[2*n + c] : xOld[2*n + c] + elapsed*v[2*n + c];
+            vs[2*n + c] = v[2*n + c];
+        }
+    }
+    // The elements of the domains: current area and A_e grad v
+    bool ok = true;
+    for (const label el : interfaceDomainElems_)
+    {
+        const label* n = &elemNodes_[3*el];
+        scalar AgradN[6];
+        const scalar A = triangleAreaGradN
+        (
+            xs + 2*n[0], xs + 2*n[1], xs + 2*n[2], AgradN
+        );
+        elemArea_[el] = A;
+        ok = ok && A > 0;
+        areaGradient
+        (
+            AgradN, vs + 2*n[0], vs + 2*n[1], vs + 2*n[2], &elemAreaGrad_[4*el]
+        );
+    }
+    if (!ok)
+    {
+        failure_ =
+            "a fluid element next to a solid is inverted or degenerate (zero"
+            " or negative area) inside a sub-cycled step";
+        return false;
+    }
+    // Their domains: smoothed gradient, area and stress (eq. 2)
+    for (size_t i = 0; i < interfaceDomains_.size(); ++i)
+    {
+        const label k = interfaceDomains_[i];
+        const label e0 = domainElems_[2*k], e1 = domainElems_[2*k + 1];
+        scalar A = elemArea_[e0];
+        scalar g[4];
+        for (label j = 0; j < 4; ++j) g[j] = elemAreaGrad_[4*e0 + j];
+        if (e1 >= 0)
+        {
+            A += elemArea_[e1];
+            for (label j = 0; j < 4; ++j) g[j] += elemAreaGrad_[4*e1 + j];
+        }
+        for (label j = 0; j < 4; ++j) domainGrad_[4*k + j] = g[j]/A;
+        domainArea_[k] = A/3;
+        materials_[interfaceDomainRegion_[i]].stress
+        (
+            k, k + 1, domainGrad_.data(), domainArea_.data(),
+            domainMass_.data(), domainStress_.data()
+        );
+    }
+    // The forces of the elements with a solid node (eq. 5)
+    const scalar third = 1.0/3.0;
+    for (const label el : interfaceElems_)
+    {
+        const label* d = &elemDomains_[3*el];
+        scalar P[4];
+        for (label i = 0; i < 4; ++i)
+        {
+            P[i] = third*
+            (
+                domainStress_[4*d[0] + i] + domainStress_[4*d[1] + i]
+              + domainStress_[4*d[2] + i]
+            );
+        }
+        const label* n = &elemNodes_[3*el];
+        scalar AgradN[6];
+        triangleAreaGradN(xs + 2*n[0], xs + 2*n[1], xs + 2*n[2], AgradN);
+        scalar* f = &elemForce_[6*el];
+        for (label a = 0; a < 3; ++a)
+        {
+            f[2*a] = -(P[0]*AgradN[2*a] + P[1]*AgradN[2*a + 1]);
+            f[2*a + 1] = -(P[2]*AgradN[2*a] + P[3]*AgradN[2*a + 1]);
+        }
+    }
+    return true;
+}
+
+
+bool Foam::elementModel::advanceSolidSubStep
+(
+    const scalar subDt,
+    const scalar elapsed,
+    const scalar dt
+)
+{
+    const bool first = elapsed == 0;
+    const bool extrapolate = load_ != subCycleLoad::held && !first;
+    // In place: the other buffer holds the state at the start of the
+    // fluid step (revert())
+    scalar* x = x_[cur_].data();
+    scalar* v = v_[cur_].data();
+    const scalar span = first ? 0.5*(previousSubStep_[cur_] + subDt) : subDt;
+    const scalar keep = 1/(1 + massDamping_*span), gain = span*keep;
+    // The reactions are the mean force over the fluid step
+    const scalar weight = subDt/dt;
+    bool finite = true;
+    const label nSolid = label(solidNodes_.size());
+
+    // Performance critical: every solid node, every sub-step
+    #pragma omp parallel for schedule(static) reduction(&&: finite) if(nSolid > minParallelLoop)
+    for (label i = 0; i < nSolid; ++i)
+    {
+        const label n = solidNodes_[i];
+        scalar r[2] = {0, 0};
+        // The fluid's load at the sub-step's time, F^n + elapsed dF/dt
+        // (the evaluation holds F^n)
+        const scalar extra[2] =
+        {
+            extrapolate ? elapsed*fluidLoadRate_[2*i] : 0,
+            extrapolate ? elapsed*fluidLoadRate_[2*i + 1] : 0
+        };
+        const bool ok =
+            integrateNode
+            (
+                n, x, v, x, v, span, keep, gain, subDt, r,
+                extrapolate ? extra : nullptr
+            );
+        finite = finite && ok;
+        if (nodeConstraint_[n] == constraint::free) continue;
+        scalar* reaction = &nodeReaction_[2*n];
+        reaction[0] = (first ? 0 : reaction[0]) + weight*r[0];
+        reaction[1] = (first ? 0 : reaction[1]) + weight*r[1];
+    }
+    previousSubStep_[cur_] = subDt;
     if (!finite)
     {
         failure_ = "a node velocity is not finite";

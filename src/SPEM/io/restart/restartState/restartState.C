@@ -363,7 +363,18 @@ void Foam::restartState::write(const content& c) const
     {
         IOdictionary step(outFile("timeStep"));
         step.add("previousDeltaT", c.previousDeltaT);
+        if (c.previousSubStep >= 0)
+        {
+            step.add("previousSubStep", c.previousSubStep);
+        }
         writeExact(step, true);
+    }
+    if (c.solidFluidLoad && !c.solidFluidLoad->empty())
+    {
+        const std::vector<scalar>& F = *c.solidFluidLoad;
+        vectorIOField load(outFile("solidFluidLoad"), label(F.size()/2));
+        forAll(load, i) load[i] = vector(F[2*i], F[2*i + 1], 0);
+        writeExact(load);
     }
     if (c.bodies && !c.bodies->empty())
     {
@@ -713,6 +724,51 @@ Foam::scalar Foam::restartState::readPreviousDeltaT() const
             io,
             "previousDeltaT is not a step of the run: not finite, negative"
             " or longer than the time of the state"
+        );
+    }
+    return dt;
+}
+
+
+bool Foam::restartState::readSolidFluidLoad(std::vector<scalar>& load) const
+{
+    load.clear();
+    if (!restarting()) return false;
+    const IOobject io(file("solidFluidLoad"));
+    if (!listed<vectorIOField>(io)) return false;
+    const vectorIOField F(io);
+    load.resize(2*F.size());
+    forAll(F, i)
+    {
+        load[2*i] = F[i].x();
+        load[2*i + 1] = F[i].y();
+        if (!std::isfinite(load[2*i]) || !std::isfinite(load[2*i + 1]))
+        {
+            bad(io, "a load that is not finite");
+        }
+    }
+    return true;
+}
+
+
+Foam::scalar Foam::restartState::readPreviousSubStep() const
+{
+    if (!restarting()) return -1;
+    const IOobject io(file("timeStep"));
+    if (!listed<IOdictionary>(io)) return -1;
+    const IOdictionary step(io);
+    if (!step.found("previousSubStep")) return -1;
+    const scalar dt = step.get<scalar>("previousSubStep");
+    if
+    (
+        !(std::isfinite(dt) && dt >= 0 && dt <= runTime_.value()*(1 + 1e-9))
+    )
+    {
+        bad
+        (
+            io,
+            "previousSubStep is not a sub-step of the run: not finite,"
+            " negative or longer than the time of the state"
         );
     }
     return dt;
