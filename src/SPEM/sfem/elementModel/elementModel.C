@@ -560,6 +560,48 @@ bool Foam::elementModel::elementPass(const bool solidsOnly)
 }
 
 
+inline Foam::scalar Foam::elementModel::smoothDomainGradient(const label k)
+{
+    const label e0 = domainElems_[2*k], e1 = domainElems_[2*k + 1];
+    scalar A = elemArea_[e0];
+    scalar g[4];
+    for (label i = 0; i < 4; ++i) g[i] = elemAreaGrad_[4*e0 + i];
+    if (e1 >= 0)
+    {
+        A += elemArea_[e1];
+        for (label i = 0; i < 4; ++i) g[i] += elemAreaGrad_[4*e1 + i];
+    }
+    const scalar invA = 1/A;
+    for (label i = 0; i < 4; ++i) domainGrad_[4*k + i] = g[i]*invA;
+    return A;
+}
+
+
+inline void Foam::elementModel::elementForce(const label el, const scalar* x)
+{
+    const scalar third = 1.0/3.0;
+    const label* d = &elemDomains_[3*el];
+    scalar P[4];
+    for (label i = 0; i < 4; ++i)
+    {
+        P[i] = third*
+        (
+            domainStress_[4*d[0] + i] + domainStress_[4*d[1] + i]
+          + domainStress_[4*d[2] + i]
+        );
+    }
+    const label* n = &elemNodes_[3*el];
+    scalar AgradN[6];
+    triangleAreaGradN(x + 2*n[0], x + 2*n[1], x + 2*n[2], AgradN);
+    scalar* f = &elemForce_[6*el];
+    for (label a = 0; a < 3; ++a)
+    {
+        f[2*a] = -(P[0]*AgradN[2*a] + P[1]*AgradN[2*a + 1]);
+        f[2*a + 1] = -(P[2]*AgradN[2*a] + P[3]*AgradN[2*a + 1]);
+    }
+}
+
+
 bool Foam::elementModel::domainPass(const bool solidsOnly)
 {
     bool ok = true;
@@ -574,17 +616,7 @@ bool Foam::elementModel::domainPass(const bool solidsOnly)
         #pragma omp parallel for schedule(static) if(end - begin > minParallelLoop)
         for (label k = begin; k < end; ++k)
         {
-            const label e0 = domainElems_[2*k], e1 = domainElems_[2*k + 1];
-            scalar A = elemArea_[e0];
-            scalar g[4];
-            for (label i = 0; i < 4; ++i) g[i] = elemAreaGrad_[4*e0 + i];
-            if (e1 >= 0)
-            {
-                A += elemArea_[e1];
-                for (label i = 0; i < 4; ++i) g[i] += elemAreaGrad_[4*e1 + i];
-            }
-            const scalar invA = 1/A;
-            for (label i = 0; i < 4; ++i) domainGrad_[4*k + i] = g[i]*invA;
+            const scalar A = smoothDomainGradient(k);
             if (fluid) domainArea_[k] = A/3;
         }
 
@@ -608,8 +640,6 @@ bool Foam::elementModel::domainPass(const bool solidsOnly)
 
 void Foam::elementModel::forcePass(const bool solidsOnly)
 {
-    const scalar third = 1.0/3.0;
-
     for (label r = 0; r < regions_.size(); ++r)
     {
         if (!materials_.set(r)) continue;   // void: no elements
@@ -623,25 +653,7 @@ void Foam::elementModel::forcePass(const bool solidsOnly)
         #pragma omp parallel for schedule(static) if(end - begin > minParallelLoop)
         for (label el = begin; el < end; ++el)
         {
-            const label* d = &elemDomains_[3*el];
-            scalar P[4];
-            for (label i = 0; i < 4; ++i)
-            {
-                P[i] = third*
-                (
-                    domainStress_[4*d[0] + i] + domainStress_[4*d[1] + i]
-                  + domainStress_[4*d[2] + i]
-                );
-            }
-            const label* n = &elemNodes_[3*el];
-            scalar AgradN[6];
-            triangleAreaGradN(x + 2*n[0], x + 2*n[1], x + 2*n[2], AgradN);
-            scalar* f = &elemForce_[6*el];
-            for (label a = 0; a < 3; ++a)
-            {
-                f[2*a] = -(P[0]*AgradN[2*a] + P[1]*AgradN[2*a + 1]);
-                f[2*a + 1] = -(P[2]*AgradN[2*a] + P[3]*AgradN[2*a + 1]);
-            }
+            elementForce(el, x);
         }
     }
 }
@@ -1056,17 +1068,7 @@ bool Foam::elementModel::evaluateInterfaceElements(const scalar elapsed)
     for (size_t i = 0; i < interfaceDomains_.size(); ++i)
     {
         const label k = interfaceDomains_[i];
-        const label e0 = domainElems_[2*k], e1 = domainElems_[2*k + 1];
-        scalar A = elemArea_[e0];
-        scalar g[4];
-        for (label j = 0; j < 4; ++j) g[j] = elemAreaGrad_[4*e0 + j];
-        if (e1 >= 0)
-        {
-            A += elemArea_[e1];
-            for (label j = 0; j < 4; ++j) g[j] += elemAreaGrad_[4*e1 + j];
-        }
-        for (label j = 0; j < 4; ++j) domainGrad_[4*k + j] = g[j]/A;
-        domainArea_[k] = A/3;
+        domainArea_[k] = smoothDomainGradient(k)/3;
         materials_[interfaceDomainRegion_[i]].stress
         (
             k, k + 1, domainGrad_.data(), domainArea_.data(),
@@ -1074,29 +1076,7 @@ bool Foam::elementModel::evaluateInterfaceElements(const scalar elapsed)
         );
     }
     // The forces of the elements with a solid node (eq. 5)
-    const scalar third = 1.0/3.0;
-    for (const label el : interfaceElems_)
-    {
-        const label* d = &elemDomains_[3*el];
-        scalar P[4];
-        for (label i = 0; i < 4; ++i)
-        {
-            P[i] = third*
-            (
-                domainStress_[4*d[0] + i] + domainStress_[4*d[1] + i]
-              + domainStress_[4*d[2] + i]
-            );
-        }
-        const label* n = &elemNodes_[3*el];
-        scalar AgradN[6];
-        triangleAreaGradN(xs + 2*n[0], xs + 2*n[1], xs + 2*n[2], AgradN);
-        scalar* f = &elemForce_[6*el];
-        for (label a = 0; a < 3; ++a)
-        {
-            f[2*a] = -(P[0]*AgradN[2*a] + P[1]*AgradN[2*a + 1]);
-            f[2*a + 1] = -(P[2]*AgradN[2*a] + P[3]*AgradN[2*a + 1]);
-        }
-    }
+    for (const label el : interfaceElems_) elementForce(el, xs);
     return true;
 }
 
