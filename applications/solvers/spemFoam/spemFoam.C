@@ -28,6 +28,7 @@ Usage
 #include "timeStepControl.H"
 
 #include <memory>
+#include <type_traits>
 
 using namespace Foam;
 
@@ -50,32 +51,28 @@ namespace
         {
             // The error of this attempt, if it is the start state's
             std::unique_ptr<error> failure;
+            // Any other error stops as it would have; exit() is not
+            // virtual, so each type is kept as itself (IOerror prints its
+            // file)
+            const auto keepOrExit = [&](auto& err)
+            {
+                if (!runTime.namesStartState(err))
+                {
+                    restore();
+                    err.throwExceptions(false);
+                    err.exit(1);
+                }
+                failure =
+                    std::make_unique<std::decay_t<decltype(err)>>(err);
+            };
             try
             {
                 auto model = std::make_unique<spemModel>(runTime);
                 restore();
                 return model;
             }
-            catch (IOerror& err)
-            {
-                if (!runTime.namesStartState(err))
-                {
-                    restore();
-                    err.throwExceptions(false);
-                    err.exit(1);
-                }
-                failure = std::make_unique<IOerror>(err);
-            }
-            catch (error& err)
-            {
-                if (!runTime.namesStartState(err))
-                {
-                    restore();
-                    err.throwExceptions(false);
-                    err.exit(1);
-                }
-                failure = std::make_unique<error>(err);
-            }
+            catch (IOerror& err) { keepOrExit(err); }
+            catch (error& err) { keepOrExit(err); }
             // The file and line of a reader's error (a truncated file)
             std::string cause = failure->message();
             if (const auto* io = dynamic_cast<const IOerror*>(failure.get()))
