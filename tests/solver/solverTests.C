@@ -2702,6 +2702,148 @@ TEST_F(Solver, logHasProgressLinesAndEndsWithEnd)
 }
 
 
+namespace
+{
+
+//- The parts of a "Cost ..." line of the log: name -> (share [%], seconds
+//  or -1 where none is printed, a part that took no time at all)
+std::map<std::string, std::pair<double, double>> costParts
+(
+    const std::string& line
+)
+{
+    std::map<std::string, std::pair<double, double>> parts;
+    const std::regex part("([a-z]+) ([-0-9.e+]+) %( ([-0-9.e+]+) s)?");
+    const std::string body = line.substr(line.find("): ") + 3);
+    for
+    (
+        std::sregex_iterator m(body.begin(), body.end(), part), end;
+        m != end;
+        ++m
+    )
+    {
+        parts[(*m)[1]] =
+        {
+            std::stod((*m)[2]), (*m)[4].matched ? std::stod((*m)[4]) : -1
+        };
+    }
+    return parts;
+}
+
+//- The lines of the log that start with start
+std::vector<std::string> linesStartingWith
+(
+    const std::string& text,
+    const std::string& start
+)
+{
+    std::vector<std::string> lines;
+    std::istringstream is(text);
+    for (std::string line; std::getline(is, line);)
+    {
+        if (line.rfind(start, 0) == 0) lines.push_back(line);
+    }
+    return lines;
+}
+
+//- The shares of a cost line add up to 100 % (each rounded to 0.1 %,
+//  search counted inside particles)
+void expectSharesAddUp(const std::string& line)
+{
+    const auto parts = costParts(line);
+    double sum = 0;
+    for (const auto& p : parts)
+    {
+        if (p.first != "search") sum += p.second.first;
+    }
+    EXPECT_NEAR(sum, 100, 0.05*parts.size()) << line;
+}
+
+} // End anonymous namespace
+
+
+TEST_F(Solver, logBreaksTheCostDownAndPartsTheSceneLacksCostNothing)
+{
+    // The column as particles (method SPH): no elements, couplings,
+    // conversion or bodies, whose parts must not even be timed
+    // 100 steps, logged every 25, written at 0.02 and 0.04
+    useSPH();
+    setControl("endTime", "0.04");
+    setControl("logInterval", "25");
+    setControl("writeInterval", "50");
+    const std::string text = runExpectingSuccess();
+    if (HasFailure()) return;
+
+    const std::vector<std::string> interval =
+        linesStartingWith(text, "Cost since the last log (");
+    const std::vector<std::string> run =
+        linesStartingWith(text, "Cost of the run (");
+    ASSERT_EQ(interval.size(), linesStartingWith(text, "Time = ").size())
+        << text;
+    ASSERT_EQ(run.size(), 1u) << text;
+    for (const std::string& line : interval) expectSharesAddUp(line);
+    expectSharesAddUp(run[0]);
+
+    const auto parts = costParts(run[0]);
+    for
+    (
+        const char* name
+      : {"elements", "particles", "search", "couplings", "conversion",
+         "bodies", "output", "other"}
+    )
+    {
+        ASSERT_EQ(parts.count(name), 1u) << name << '\n' << run[0];
+    }
+    for (const char* none : {"elements", "couplings", "conversion", "bodies"})
+    {
+        EXPECT_EQ(parts.at(none).first, 0) << none << '\n' << run[0];
+        EXPECT_EQ(parts.at(none).second, -1) << none << '\n' << run[0];
+    }
+    // The particles do the work (their share depends on the machine's
+    // load, only that they were timed is certain); the state is written
+    // twice
+    EXPECT_GT(parts.at("particles").second, 0) << run[0];
+    // The search was timed (its seconds printed), inside the particles'
+    EXPECT_GE(parts.at("search").second, 0) << run[0];
+    EXPECT_LT(parts.at("search").first, parts.at("particles").first)
+        << run[0];
+    EXPECT_GT(parts.at("output").second, 0) << run[0];
+}
+
+
+TEST_F(Solver, costBreakdownOfAnSPEMPlateRunWithoutConversionHasNoConversion)
+{
+    // Particles above 0.5 m over water elements over the elastic plate,
+    // no conversion at run time (criterion none)
+    addPlate();
+    schemes_ =
+        "method          SPEM;\n"
+        "conversion\n{\n    criterion none;\n    presetParticleRegions\n"
+        "    {\n        top { type box; min (-1 0.5 0); max (1 2 0); }\n"
+        "    }\n}\n";
+    // The plate's step, about 3e-5 s at maxCo 0.5: about 100 steps
+    setControl("adjustTimeStep", "yes");
+    setControl("endTime", "0.003");
+    setControl("logInterval", "50");
+    setControl("writeInterval", "1000");
+    const std::string text = runExpectingSuccess();
+    if (HasFailure()) return;
+
+    const std::vector<std::string> run =
+        linesStartingWith(text, "Cost of the run (");
+    ASSERT_EQ(run.size(), 1u) << text;
+    expectSharesAddUp(run[0]);
+    const auto parts = costParts(run[0]);
+    ASSERT_EQ(parts.count("conversion"), 1u) << run[0];
+    EXPECT_EQ(parts.at("conversion").second, -1) << run[0];
+    EXPECT_EQ(parts.at("bodies").second, -1) << run[0];
+    for (const char* some : {"elements", "particles", "couplings"})
+    {
+        EXPECT_GT(parts.at(some).second, 0) << some << '\n' << run[0];
+    }
+}
+
+
 // * * * * * * * * * * * * * * * * * Physics * * * * * * * * * * * * * * * * //
 
 namespace

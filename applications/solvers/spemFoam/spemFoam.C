@@ -143,6 +143,7 @@ int main(int argc, char *argv[])
     }
 
     Info<< "Starting time loop" << nl << endl;
+    model.cost().startLoop();
 
     while (runTime.run())
     {
@@ -174,13 +175,22 @@ int main(int argc, char *argv[])
             model.report(Info);
             Info<< nl;
             timeStep->reportProgress(Info);
+            model.cost().reportInterval(Info);
             Info<< "ExecutionTime = " << runTime.elapsedCpuTime()
                 << " s  ClockTime = " << runTime.elapsedClockTime() << " s"
                 << nl << endl;
         }
-        runTime.write();
+        {
+            // Time's own record and function objects
+            const costBreakdown::scope timed
+            (
+                model.cost(), costBreakdown::output
+            );
+            runTime.write();
+        }
     }
 
-    Info<< "End\n" << endl;
+    model.cost().reportRun(Info);
+    Info<< nl << "End\n" << endl;
     return 0;
 }

@@ -541,6 +541,7 @@ void Foam::spemModel::write(const bool force)
     if (!force && !runTime_.writeTime()) return;
     if (runTime_.value() == lastWrittenTime_) return;
     lastWrittenTime_ = runTime_.value();
+    const costBreakdown::scope timed(cost(), costBreakdown::output);
     restart_.write(method_->state());
     if (!vtk_) vtk_.reset(new vtkModelWriter(runTime_));
     vtk_->write(method_->elements(), method_->particles(), bodies_);

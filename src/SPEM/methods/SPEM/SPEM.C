@@ -446,8 +446,15 @@ bool Foam::spemMethods::SPEM::evaluate()
 {
     // What a failure of this evaluation undoes (revertToLastGood())
     recordCheckpoint();
-    if (conversion_)
+    // Nothing to check without a distortion criterion or bodies near which
+    // elements convert: not even timed (see costBreakdown)
+    if
+    (
+        conversion_
+     && (conversion_->criterion().type() != "none" || !case_.bodies.empty())
+    )
     {
+        const costBreakdown::scope timed(cost_, costBreakdown::conversion);
         const std::vector<label> triangles =
             conversion_->trianglesToConvert(*elements_, trianglesNearBodies());
         if (!triangles.empty()) convert(triangles);

@@ -30,6 +30,8 @@ void Foam::spemMethod::collectCouplings()
 
 void Foam::spemMethod::callHooks(void (spemCoupling::*hook)(couplingStep&))
 {
+    if (couplings_.empty()) return;
+    const costBreakdown::scope timed(cost_, costBreakdown::couplings);
     couplingStep s
     {
         case_.mesh, case_.patchTypes, elements_.get(), particles_.get(),
@@ -122,6 +124,7 @@ void Foam::spemMethod::createParticleHalf
         )
     );
     particles_->setMassDamping(case_.massDamping);
+    particles_->timeSearchIn(&cost_);
     // A particle is outside the tank farther than a kernel support from it:
     // nearer, it still sees the wall particles
     particleTank_.reset
@@ -583,6 +586,7 @@ void Foam::spemMethod::restoreSubCyclingLoad()
 
 bool Foam::spemMethod::advanceElements(const scalar dt)
 {
+    const costBreakdown::scope timed(cost_, costBreakdown::elements);
     lastSubSteps_ = solidSubSteps(dt);
     if (lastSubSteps_ == 1)
     {
@@ -635,12 +639,27 @@ bool Foam::spemMethod::advance(const scalar dt)
     if (elements_ && !advanceElements(dt)) return false;
     callHooks(&spemCoupling::afterElementAdvance);
     particlesAdvanced_ = bool(particles_);
-    if (particles_ && !particles_->advance(dt))
+    if (particles_)
     {
-        return fail(particles_->failure(), unstableHint);
+        const costBreakdown::scope timed(cost_, costBreakdown::particles);
+        if (!particles_->advance(dt))
+        {
+            return fail(particles_->failure(), unstableHint);
+        }
     }
     // The bodies under the fluid's force of the last evaluation, from
     // t^n = t^{n+1} - dt (the Time is already at the new time)
+    rigidBodies& bodies = case_.bodies;
+    if (!bodies.empty() && !advanceBodies(dt)) return false;
+    callHooks(&spemCoupling::afterBodyAdvance);
+    lastDeltaT_ = dt;
+    return true;
+}
+
+
+bool Foam::spemMethod::advanceBodies(const scalar dt)
+{
+    const costBreakdown::scope timed(cost_, costBreakdown::bodies);
     rigidBodies& bodies = case_.bodies;
     forAll(bodies, b)
     {
@@ -652,32 +671,30 @@ bool Foam::spemMethod::advance(const scalar dt)
             case_.g[0], case_.g[1]
         );
     }
-    if (!bodies.empty())
+    if (!contact_->correctBodies(bodies, dt))
     {
-        if (!contact_->correctBodies(bodies, dt))
-        {
-            return fail
-            (
-                contact_->failure(),
-                "Reduce maxCo or deltaT if the body moved too far in one"
-                " step; a prescribed motion into a wall must be changed in"
-                " constant/rigidBodyProperties."
-            );
-        }
-        if (!checkBodiesInTank()) return false;
+        return fail
+        (
+            contact_->failure(),
+            "Reduce maxCo or deltaT if the body moved too far in one"
+            " step; a prescribed motion into a wall must be changed in"
+            " constant/rigidBodyProperties."
+        );
     }
-    callHooks(&spemCoupling::afterBodyAdvance);
-    lastDeltaT_ = dt;
-    return true;
+    return checkBodiesInTank();
 }
 
 
 bool Foam::spemMethod::evaluate()
 {
     callHooks(&spemCoupling::beforeElementEvaluate);
-    if (elements_ && !elements_->evaluate())
+    if (elements_)
     {
-        return fail(elements_->failure(), unstableHint);
+        const costBreakdown::scope timed(cost_, costBreakdown::elements);
+        if (!elements_->evaluate())
+        {
+            return fail(elements_->failure(), unstableHint);
+        }
     }
     if (!particles_)
     {
@@ -687,6 +704,7 @@ bool Foam::spemMethod::evaluate()
 
     structure_.clear();
     callHooks(&spemCoupling::beforeParticleEvaluate);
+    const costBreakdown::scope timed(cost_, costBreakdown::particles);
     if (structure_.size() > 0)
     {
         particles_->setStructureParticles

@@ -1,4 +1,6 @@
 #include "sphFluid.H"
+
+#include <optional>
 #include "Switch.H"
 #include "dictionary.H"
 #include "checkKeywords.H"
@@ -6,6 +8,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <optional>
 #include <sstream>
 #include <type_traits>
 
@@ -935,17 +938,24 @@ bool Foam::sphFluid::evaluate()
     failure_.clear();
     if (!checkParticles()) return false;
 
-    const scalar kappa = kernel_->support();
-    if (!cells_.tryUpdate(particles_, kappa*particles_.maxSmoothingLength()))
     {
-        failure_ = cells_.failure();
-        return false;
-    }
-    lastSortOrder_.clear();
-    if (++stepsSinceReorder_ >= reorderInterval)
-    {
-        reorder();
-        stepsSinceReorder_ = 0;
+        std::optional<costBreakdown::scope> timed;
+        if (cost_) timed.emplace(*cost_, costBreakdown::search);
+        const scalar kappa = kernel_->support();
+        if
+        (
+            !cells_.tryUpdate(particles_, kappa*particles_.maxSmoothingLength())
+        )
+        {
+            failure_ = cells_.failure();
+            return false;
+        }
+        lastSortOrder_.clear();
+        if (++stepsSinceReorder_ >= reorderInterval)
+        {
+            reorder();
+            stepsSinceReorder_ = 0;
+        }
     }
 
     kernel_->visit([this](const auto& k) { densityPass(k); });
