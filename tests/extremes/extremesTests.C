@@ -162,11 +162,11 @@ stateCheck checkStates(const fs::path& caseDir, const double reach)
     for (const fs::path& dir : writtenStates(caseDir))
     {
         ++c.nStates;
-        for (const std::string& name : {"points", "particlePositions"})
+        for (const char* name : {"points", "particlePositions"})
         {
             const fs::path f = dir/"spem"/name;
             if (!fs::exists(f)) continue;
-            const bool particles = name == "particlePositions";
+            const bool particles = std::string(name) == "particlePositions";
             const std::vector<double> x = readFoamList(f, 3);
             for (std::size_t i = 0; i + 1 < x.size(); i += 3)
             {
@@ -199,11 +199,11 @@ stateCheck checkStates(const fs::path& caseDir, const double reach)
                 }
             }
         }
-        for (const std::string& name : {"U", "particleU", "particleRho"})
+        for (const char* name : {"U", "particleU", "particleRho"})
         {
             const fs::path f = dir/"spem"/name;
             if (!fs::exists(f)) continue;
-            for (const double v : readFoamList(f, name == "particleRho" ? 1 : 3))
+            for (const double v : readFoamList(f, std::string(name) == "particleRho" ? 1 : 3))
             {
                 if (!std::isfinite(v)) ++c.nonFinite;
             }
