@@ -27,6 +27,7 @@ Description
 #include "elementToParticle.H"
 #include "wallParticles.H"
 #include "dictionary.H"
+#include "parallelLoop.H"
 #include "IStringStream.H"
 #include "testMeshes.H"
 
@@ -36,6 +37,8 @@ Description
 #include <cmath>
 #include <map>
 #include <random>
+
+#include <omp.h>
 
 using namespace Foam;
 
@@ -311,6 +314,67 @@ TEST(SphFluid, momentumChangesOnlyByGravityAndWallImpulse)
               << std::endl;
     ASSERT_GT(impulse, 0);
     EXPECT_LT(worst, 1e-12*mass + 1e-9*impulse);
+}
+
+
+TEST(SphFluid, stateDoesNotDependOnTheNumberOfThreads)
+{
+    // A water block of 80 x 80 particles (above minParallelParticles: the
+    // passes split among threads) with random velocities on three layers
+    // of no-slip wall particles: 40 steps (two sorts by cell) on one
+    // thread and on two give the same state, bit for bit
+    const scalar dx = 0.01;
+    const label n = 80;
+    ASSERT_GT(n*n, minParallelParticles);
+    const auto run = [&](const int threads)
+    {
+        omp_set_num_threads(threads);
+        particleSet ps = irregularParticles(n, dx, 0.1, 3);
+        std::mt19937 gen(7);
+        std::uniform_real_distribution<scalar> u(-0.5, 0.5);
+        for (scalar& v : ps.velocities()) v = u(gen);
+        for (label layer = 0; layer < 3; ++layer)
+        {
+            const scalar off = (layer + 0.5)*dx;
+            for (label k = -3; k < n + 3; ++k)
+            {
+                const scalar s = (k + 0.5)*dx;
+                ps.append(s, -off, 0, 0, 1000, 0, 1000*dx*dx, 1.3*dx,
+                    particleSet::kind::wall);
+                if (k >= 0)
+                {
+                    ps.append(-off, s, 0, 0, 1000, 0, 1000*dx*dx, 1.3*dx,
+                        particleSet::kind::wall);
+                    ps.append(n*dx + off, s, 0, 0, 1000, 0, 1000*dx*dx,
+                        1.3*dx, particleSet::kind::wall);
+                }
+            }
+        }
+        const scalar lo[2] = {-1, -1}, hi[2] = {2, 2};
+        sphFluid fluid
+        (
+            schemes(""), std::move(ps), 1000, 20, 1e-3, 0, -9.81, lo, hi
+        );
+        EXPECT_TRUE(fluid.evaluate()) << fluid.failure();
+        for (int step = 0; step < 2*sphFluid::reorderInterval; ++step)
+        {
+            fluid.advance(0.9*fluid.stableDeltaT());
+            EXPECT_TRUE(fluid.evaluate()) << fluid.failure();
+        }
+        std::vector<scalar> state = fluid.particles().positions();
+        const std::vector<scalar>& v = fluid.particles().velocities();
+        const std::vector<scalar>& rho = fluid.particles().density();
+        state.insert(state.end(), v.begin(), v.end());
+        state.insert(state.end(), rho.begin(), rho.end());
+        return state;
+    };
+    const int threadsBefore = omp_get_max_threads();
+    const std::vector<scalar> one = run(1), two = run(2);
+    omp_set_num_threads(threadsBefore);
+    ASSERT_EQ(one.size(), two.size());
+    label differ = 0;
+    for (size_t k = 0; k < one.size(); ++k) differ += one[k] != two[k];
+    EXPECT_EQ(differ, 0) << "of " << one.size() << " values";
 }
 
 

@@ -15,6 +15,7 @@
 namespace
 {
     using Foam::minParallelLoop;
+    using Foam::minParallelParticles;
 
     using Foam::scalar;
     using Foam::label;
@@ -566,6 +567,31 @@ void Foam::sphFluid::reorder()
 }
 
 
+void Foam::sphFluid::indexParticles()
+{
+    // One sequential sweep of a byte per particle: a small fraction of a
+    // pass, which visits some 20-30 neighbours per particle
+    fluidIndex_.clear();
+    wallIndex_.clear();
+    structureIndex_.clear();
+    ghostIndex_.clear();
+    const label n = particles_.size();
+    const particleSet::kind* kind = particles_.kinds().data();
+    for (label i = 0; i < n; ++i)
+    {
+        const particleSet::kind k = kind[i];
+        if (k == particleSet::kind::fluid)
+        {
+            fluidIndex_.push_back(i);
+            continue;
+        }
+        if (particleSet::isWall(k)) wallIndex_.push_back(i);
+        if (k == particleSet::kind::structure) structureIndex_.push_back(i);
+        else if (k == particleSet::kind::ghost) ghostIndex_.push_back(i);
+    }
+}
+
+
 void Foam::sphFluid::resizeFields()
 {
     const label n = particles_.size();
@@ -583,7 +609,6 @@ void Foam::sphFluid::resizeFields()
 template<class Kernel>
 void Foam::sphFluid::densityPass(const Kernel&)
 {
-    const label n = particles_.size();
     const scalar kappa = Kernel::support;
     const scalar* __restrict__ v = particles_.velocities().data();
     const scalar* __restrict__ m = particles_.mass().data();
@@ -610,11 +635,12 @@ void Foam::sphFluid::densityPass(const Kernel&)
     // neighbours (volumes, diffusion): read rhoOld, write rho. An exact
     // restart needs both (setOldDensity()).
     // Performance critical: every fluid particle, every step.
-    #pragma omp parallel for schedule(static) if(n > minParallelLoop)
-    for (label i = 0; i < n; ++i)
+    const label nFluid = label(fluidIndex_.size());
+    const label* __restrict__ fluid = fluidIndex_.data();
+    #pragma omp parallel for schedule(static) if(nFluid > minParallelParticles)
+    for (label f = 0; f < nFluid; ++f)
     {
-        if (kind[i] != particleSet::kind::fluid) continue;
-
+        const label i = fluid[f];
         const scalar vxi = v[2*i], vyi = v[2*i + 1], rhoi = rhoOld[i];
         densitySums sums;
 
@@ -698,7 +724,6 @@ void Foam::sphFluid::densityPass(const Kernel&)
 template<class Kernel>
 void Foam::sphFluid::wallPass(const Kernel&)
 {
-    const label n = particles_.size();
     const scalar kappa = Kernel::support;
     const scalar* __restrict__ h = particles_.smoothingLength().data();
     const particleSet::kind* __restrict__ kind = particles_.kinds().data();
@@ -710,10 +735,12 @@ void Foam::sphFluid::wallPass(const Kernel&)
     const scalar c2 = c_*c_, rho0 = rho0_;
     const bool structureSuction = controls_.structureSuction;
 
-    #pragma omp parallel for schedule(static) if(n > minParallelLoop)
-    for (label w = 0; w < n; ++w)
+    const label nWalls = label(wallIndex_.size());
+    const label* __restrict__ walls = wallIndex_.data();
+    #pragma omp parallel for schedule(static) if(nWalls > minParallelParticles)
+    for (label k = 0; k < nWalls; ++k)
     {
-        if (!particleSet::isWall(kind[w])) continue;
+        const label w = walls[k];
 
         // A structure moves: its velocity (set with it) and acceleration
         const bool structure = kind[w] == particleSet::kind::structure;
@@ -777,7 +804,6 @@ void Foam::sphFluid::wallPass(const Kernel&)
 template<class Kernel>
 void Foam::sphFluid::momentumPass(const Kernel&)
 {
-    const label n = particles_.size();
     const scalar kappa = Kernel::support;
     const scalar* __restrict__ v = particles_.velocities().data();
     const scalar* __restrict__ m = particles_.mass().data();
@@ -795,18 +821,15 @@ void Foam::sphFluid::momentumPass(const Kernel&)
     scalar dtAcoustic = GREAT, dtForce = GREAT, dtViscous = GREAT;
 
     // Performance critical: every fluid particle, every step.
-    #pragma omp parallel for schedule(static) reduction(+: fwx, fwy, fgx, fgy, fsx, fsy) reduction(min: dtAcoustic, dtForce, dtViscous) if(n > minParallelLoop)
-    for (label i = 0; i < n; ++i)
+    // Only the fluid particles accelerate
+    std::fill(acceleration_.begin(), acceleration_.end(), 0);
+    std::fill(ghostAcceleration_.begin(), ghostAcceleration_.end(), 0);
+    const label nFluid = label(fluidIndex_.size());
+    const label* __restrict__ fluid = fluidIndex_.data();
+    #pragma omp parallel for schedule(static) reduction(+: fwx, fwy, fgx, fgy, fsx, fsy) reduction(min: dtAcoustic, dtForce, dtViscous) if(nFluid > minParallelParticles)
+    for (label f = 0; f < nFluid; ++f)
     {
-        if (kind[i] != particleSet::kind::fluid)
-        {
-            a[2*i] = 0;
-            a[2*i + 1] = 0;
-            aGhost[2*i] = 0;
-            aGhost[2*i + 1] = 0;
-            continue;
-        }
-
+        const label i = fluid[f];
         const scalar vxi = v[2*i], vyi = v[2*i + 1];
         const fluidSide fi = makeFluidSide(i, v, rho, p, C);
         scalar ax = 0, ay = 0, wx = 0, wy = 0, gfx = 0, gfy = 0, sx = 0, sy = 0;
@@ -887,7 +910,6 @@ void Foam::sphFluid::reactionPass
     std::vector<scalar>& reaction
 )
 {
-    const label n = particles_.size();
     const scalar kappa = Kernel::support;
     const scalar* __restrict__ v = particles_.velocities().data();
     const scalar* __restrict__ m = particles_.mass().data();
@@ -902,10 +924,14 @@ void Foam::sphFluid::reactionPass
 
     // F_w = -sum_f m_f a_fw: the pair forces of the momentum pass, seen
     // from the particle w (a gather: no two threads write one w)
-    #pragma omp parallel for schedule(static) if(n > minParallelLoop)
-    for (label w = 0; w < n; ++w)
+    const std::vector<label>& index =
+        k == particleSet::kind::ghost ? ghostIndex_ : structureIndex_;
+    const label nReacting = label(index.size());
+    const label* __restrict__ reacting = index.data();
+    #pragma omp parallel for schedule(static) if(nReacting > minParallelParticles)
+    for (label r = 0; r < nReacting; ++r)
     {
-        if (kind[w] != k) continue;
+        const label w = reacting[r];
         scalar Fx = 0, Fy = 0;
         cells_.forEachNeighbour
         (
@@ -957,6 +983,7 @@ bool Foam::sphFluid::evaluate()
             stepsSinceReorder_ = 0;
         }
     }
+    indexParticles();
 
     kernel_->visit([this](const auto& k) { densityPass(k); });
     pendingDeltaT_ = 0;
@@ -1017,7 +1044,6 @@ bool Foam::sphFluid::evaluate()
 
 bool Foam::sphFluid::advance(const scalar dt)
 {
-    const label n = particles_.size();
     oldPosition_ = particles_.positions();
     oldVelocity_ = particles_.velocities();
     oldDensity_ = particles_.density();
@@ -1028,7 +1054,6 @@ bool Foam::sphFluid::advance(const scalar dt)
     const scalar* __restrict__ h = particles_.smoothingLength().data();
     const scalar* __restrict__ gradC = gradC_.data();
     const scalar* __restrict__ divR = divR_.data();
-    const particleSet::kind* __restrict__ kind = particles_.kinds().data();
     const scalar A = controls_.shifting;
     const scalar threshold = controls_.freeSurfaceThreshold;
     // The velocity spans dt^n = (dt^{n-1/2} + dt^{n+1/2})/2, from the
@@ -1037,11 +1062,13 @@ bool Foam::sphFluid::advance(const scalar dt)
     const scalar span = 0.5*(previousDeltaT_ + dt);
     const scalar keep = 1/(1 + massDamping_*span), gain = span*keep;
 
-    #pragma omp parallel for schedule(static) if(n > minParallelLoop)
-    for (label i = 0; i < n; ++i)
+    indexParticles();
+    const label nFluid = label(fluidIndex_.size());
+    const label* __restrict__ fluid = fluidIndex_.data();
+    #pragma omp parallel for schedule(static) if(nFluid > minParallelParticles)
+    for (label f = 0; f < nFluid; ++f)
     {
-        if (kind[i] != particleSet::kind::fluid) continue;
-
+        const label i = fluid[f];
         const scalar vx = keep*v[2*i] + gain*a[2*i];
         const scalar vy = keep*v[2*i + 1] + gain*a[2*i + 1];
         v[2*i] = vx;
@@ -1067,7 +1094,6 @@ bool Foam::sphFluid::advance(const scalar dt)
 
 Foam::scalar Foam::sphFluid::relax(const label iterations)
 {
-    const label n = particles_.size();
     const scalar kappa = kernel_->support();
     const scalar beta = controls_.relaxationCoefficient;
     const scalar threshold = controls_.freeSurfaceThreshold;
@@ -1076,6 +1102,7 @@ Foam::scalar Foam::sphFluid::relax(const label iterations)
     for (label it = 0; it < iterations; ++it)
     {
         cells_.update(particles_, kappa*particles_.maxSmoothingLength());
+        indexParticles();
         // No step pending: the density pass keeps every density and only
         // measures grad C and div r at the current positions
         pendingDeltaT_ = 0;
@@ -1085,12 +1112,13 @@ Foam::scalar Foam::sphFluid::relax(const label iterations)
         const scalar* __restrict__ h = particles_.smoothingLength().data();
         const scalar* __restrict__ gradC = gradC_.data();
         const scalar* __restrict__ divR = divR_.data();
-        const particleSet::kind* __restrict__ kind = particles_.kinds().data();
         largest = 0;
-        #pragma omp parallel for schedule(static) reduction(max: largest) if(n > minParallelLoop)
-        for (label i = 0; i < n; ++i)
+        const label nFluid = label(fluidIndex_.size());
+        const label* __restrict__ fluid = fluidIndex_.data();
+        #pragma omp parallel for schedule(static) reduction(max: largest) if(nFluid > minParallelParticles)
+        for (label f = 0; f < nFluid; ++f)
         {
-            if (kind[i] != particleSet::kind::fluid) continue;
+            const label i = fluid[f];
             const scalar D = beta*h[i]*h[i];
             scalar sx = -D*gradC[2*i], sy = -D*gradC[2*i + 1];
             if (divR[i] < threshold)
