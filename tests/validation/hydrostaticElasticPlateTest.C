@@ -9,6 +9,7 @@ Description
 \*---------------------------------------------------------------------------*/
 
 #include "testFiles.H"
+#include "tutorialCases.H"
 
 #include <gtest/gtest.h>
 
@@ -74,8 +75,9 @@ double runTutorial(const int nx)
     const fs::path source =
         fs::path(SPEM_PROJECT_DIR)/"tutorials/hydrostaticElasticPlate";
     const fs::path caseDir =
-        fs::temp_directory_path()/("spemHydrostaticPlate_nx" + std::to_string(nx));
+        tutorialCases::casesDir()/("spemHydrostaticPlate_nx" + std::to_string(nx));
     fs::remove_all(caseDir);
+    fs::create_directories(caseDir.parent_path());
     fs::copy(source, caseDir, fs::copy_options::recursive);
     // The tutorial folder may hold a user's run: clean the copy with the
     // tutorial's own Allclean
