@@ -73,6 +73,42 @@ particleSet irregularParticles
 }
 
 
+//- irregularParticles(n, dx, 0.1, positionSeed) with random velocities of
+//  up to 0.5 m/s per component (velocitySeed), on 3 layers of dummy wall
+//  particles at spacing dx: no-slip below and right, leftWall on the left
+particleSet waterBlockInWalls
+(
+    const label n,
+    const scalar dx,
+    const unsigned positionSeed,
+    const unsigned velocitySeed,
+    const particleSet::kind leftWall
+)
+{
+    particleSet ps = irregularParticles(n, dx, 0.1, positionSeed);
+    std::mt19937 gen(velocitySeed);
+    std::uniform_real_distribution<scalar> u(-0.5, 0.5);
+    for (scalar& v : ps.velocities()) v = u(gen);
+    for (label layer = 0; layer < 3; ++layer)
+    {
+        const scalar off = (layer + 0.5)*dx;
+        for (label k = -3; k < n + 3; ++k)
+        {
+            const scalar s = (k + 0.5)*dx;
+            ps.append(s, -off, 0, 0, 1000, 0, 1000*dx*dx, 1.3*dx,
+                particleSet::kind::wall);
+            if (k >= 0)
+            {
+                ps.append(-off, s, 0, 0, 1000, 0, 1000*dx*dx, 1.3*dx,
+                    leftWall);
+                ps.append(n*dx + off, s, 0, 0, 1000, 0, 1000*dx*dx, 1.3*dx,
+                    particleSet::kind::wall);
+            }
+        }
+    }
+    return ps;
+}
+
 //- Corrected SPH gradient of f at particle i (brute force neighbours):
 //  sum_j (f_j - f_i) C_i grad_i W_ij V_j
 template<class Field>
@@ -256,27 +292,8 @@ TEST(SphFluid, momentumChangesOnlyByGravityAndWallImpulse)
     // free-slip dummy walls, decoupled FPM on (non-symmetric corrections)
     const scalar dx = 0.01;
     const label n = 20;
-    particleSet ps = irregularParticles(n, dx, 0.1, 11);
-    std::mt19937 gen(5);
-    std::uniform_real_distribution<scalar> u(-0.5, 0.5);
-    for (scalar& v : ps.velocities()) v = u(gen);
-    for (label layer = 0; layer < 3; ++layer)
-    {
-        const scalar off = (layer + 0.5)*dx;
-        for (label k = -3; k < n + 3; ++k)
-        {
-            const scalar s = (k + 0.5)*dx;
-            ps.append(s, -off, 0, 0, 1000, 0, 1000*dx*dx, 1.3*dx,
-                particleSet::kind::wall);
-            if (k >= 0)
-            {
-                ps.append(-off, s, 0, 0, 1000, 0, 1000*dx*dx, 1.3*dx,
-                    particleSet::kind::slipWall);
-                ps.append(n*dx + off, s, 0, 0, 1000, 0, 1000*dx*dx, 1.3*dx,
-                    particleSet::kind::wall);
-            }
-        }
-    }
+    particleSet ps =
+        waterBlockInWalls(n, dx, 11, 5, particleSet::kind::slipWall);
     const scalar lo[2] = {-1, -1}, hi[2] = {2, 2};
     const scalar g = -9.81;
     sphFluid fluid(schemes(""), std::move(ps), 1000, 20, 1e-3, 0, g, lo, hi);
@@ -329,27 +346,8 @@ TEST(SphFluid, stateDoesNotDependOnTheNumberOfThreads)
     const auto run = [&](const int threads)
     {
         omp_set_num_threads(threads);
-        particleSet ps = irregularParticles(n, dx, 0.1, 3);
-        std::mt19937 gen(7);
-        std::uniform_real_distribution<scalar> u(-0.5, 0.5);
-        for (scalar& v : ps.velocities()) v = u(gen);
-        for (label layer = 0; layer < 3; ++layer)
-        {
-            const scalar off = (layer + 0.5)*dx;
-            for (label k = -3; k < n + 3; ++k)
-            {
-                const scalar s = (k + 0.5)*dx;
-                ps.append(s, -off, 0, 0, 1000, 0, 1000*dx*dx, 1.3*dx,
-                    particleSet::kind::wall);
-                if (k >= 0)
-                {
-                    ps.append(-off, s, 0, 0, 1000, 0, 1000*dx*dx, 1.3*dx,
-                        particleSet::kind::wall);
-                    ps.append(n*dx + off, s, 0, 0, 1000, 0, 1000*dx*dx,
-                        1.3*dx, particleSet::kind::wall);
-                }
-            }
-        }
+        particleSet ps =
+            waterBlockInWalls(n, dx, 3, 7, particleSet::kind::wall);
         const scalar lo[2] = {-1, -1}, hi[2] = {2, 2};
         sphFluid fluid
         (
