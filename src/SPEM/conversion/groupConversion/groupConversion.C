@@ -195,7 +195,9 @@ Foam::groupConversion::trianglesToConvert
     }
     const std::vector<label>& triangle = elements.elementTriangle();
 
-    std::vector<bool> convert(nGroups(), false);
+    // Scratch kept between steps: no allocation in the time loop
+    std::vector<bool>& convert = convertGroup_;
+    convert.assign(nGroups(), false);
     bool any = false;
     for (label el = 0; el < elements.nElements(); ++el)
     {
