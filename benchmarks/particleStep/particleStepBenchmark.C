@@ -30,8 +30,10 @@ Description
     Usage
         particleStepBenchmark [Google Benchmark options]
             fullStep/fluid:N/threads:T   advance(dt) + evaluate()
-        for N in {1e4, 1e5, 1e6} fluid particles and T OpenMP threads in
-        {1, 2}. Counters: particleSteps (fluid particle-steps per second),
+        for N in {500, 1000, 2000, 4000, 1e4, 1e5, 1e6} fluid particles
+        and T OpenMP threads in {1, 2} (the small sizes place
+        minParallelParticles, with a build that splits every pass:
+        cmake -DSPEM_MIN_PARALLEL_PARTICLES=0). Counters: particleSteps (fluid particle-steps per second),
         secondsPerParticleStep, fluid, walls, neighbours (mean per fluid
         particle), bytesPerParticle (sphFluid::memoryBytes() / all
         particles). Each run builds a fresh fluid, calls evaluate() once
@@ -250,11 +252,13 @@ const int warmUpSteps = 3;
 
 //- Timed steps of a run: a multiple of sphFluid::reorderInterval (every
 //  run then pays the same share of the sorts by cell). On one thread of the
-//  reference machine (about 0.7 us per particle-step) 1.5 s at 1e4, 3 s at
-//  1e5 and 14 s at 1e6 (a single reorder cycle)
+//  reference machine (about 0.7 us per particle-step) 0.35-2.8 s at
+//  500-4000, 1.5 s at 1e4, 3 s at 1e5 and 14 s at 1e6 (a single reorder
+//  cycle)
 int64_t timedSteps(const int64_t nFluid)
 {
     const int64_t r = sphFluid::reorderInterval;
+    if (nFluid <= 4000) return 50*r;
     if (nFluid <= 10000) return 10*r;
     if (nFluid <= 100000) return 2*r;
     return r;
@@ -316,7 +320,10 @@ double largest(const std::vector<double>& v)
 //- Register fullStep for every size with its fixed number of steps
 int registerBenchmarks()
 {
-    for (const int64_t n : {10000, 100000, 1000000})
+    // The small sizes place minParallelParticles: from which size two
+    // threads beat one (a build with -DSPEM_MIN_PARALLEL_PARTICLES=0
+    // splits every pass)
+    for (const int64_t n : {500, 1000, 2000, 4000, 10000, 100000, 1000000})
     {
         for (const int64_t t : {1, 2})
         {
