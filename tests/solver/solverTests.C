@@ -23,7 +23,9 @@ Description
                            in memory and written, is the previous step's,
                            elements, particles and mass, and restarts
     SolverRestart.*        a run continued from its latest time ends in
-                           the same state as a continuous run (also with
+                           the same state as a continuous run, in ascii,
+                           in binary (the default without writeFormat)
+                           and from an ascii state under binary (also with
                            an elastic plate under the column whose
                            sub-cycling state is part of the restart)
     SolverSubCycling.*     the plate sub-cycles with subCycling on and the
@@ -393,6 +395,20 @@ protected:
             }
         }
         controls_.emplace_back(key, value);
+    }
+
+    //- Take a top-level entry out of system/controlDict (its default)
+    void removeControl(const std::string& key)
+    {
+        controls_.erase
+        (
+            std::remove_if
+            (
+                controls_.begin(), controls_.end(),
+                [&](const auto& kv) { return kv.first == key; }
+            ),
+            controls_.end()
+        );
     }
 
     //- Replace text in one of the dictionary bodies; fails the test if the
@@ -1826,7 +1842,30 @@ TEST_F(SolverRollback, blowUpInTheNextAdvanceKeepsTheParticlesOfTheLastStep)
 }
 
 
-// * * * * * * * * * * * * * * * * * Restart * * * * * * * * * * * * * * * * //
+//- Every file of <time>/spem of case A is in B's, with the same bytes;
+//  the number of files that differ (0: bit for bit)
+int differingStateFiles
+(
+    const fs::path& caseA,
+    const fs::path& caseB,
+    const std::string& time
+)
+{
+    int nDiffer = 0;
+    for (const fs::directory_entry& f : fs::directory_iterator(caseA/time/"spem"))
+    {
+        const fs::path other = caseB/time/"spem"/f.path().filename();
+        const bool same =
+            fs::exists(other) && readText(f.path()) == readText(other);
+        if (!same)
+        {
+            ++nDiffer;
+            std::cout << "differs: " << other << std::endl;
+        }
+    }
+    return nDiffer;
+}
+
 
 //- Fixture: a run continued from its latest time against a continuous one
 class SolverRestart : public Solver
@@ -1834,8 +1873,9 @@ class SolverRestart : public Solver
 protected:
 
     //- Run A continuously to 2T, and B to T and then on to 2T from its
-    //  latest time, in the given writeFormat; compare their final states
-    //  (to the relative tolerance) and their ParaView series
+    //  latest time, in the given writeFormat (empty: none, the default);
+    //  compare their final states (to the relative tolerance; at 0 also
+    //  every file of the state byte for byte) and their ParaView series
     void compareRestartedWithContinuous
     (
         const std::string& format,
@@ -1846,7 +1886,8 @@ protected:
         // damping term is part of what must restart exactly
         const std::string T = "0.1", twoT = "0.2";
         const std::vector<double> writeTimes{0, 0.05, 0.1, 0.15, 0.2};
-        setControl("writeFormat", format);
+        if (format.empty()) removeControl("writeFormat");
+        else setControl("writeFormat", format);
         setControl("deltaT", "1e-3");
         setControl("writeInterval", "50");
         damping_ = "    massProportional 5;\n";
@@ -1888,6 +1929,10 @@ protected:
             << velocityError << std::endl;
         EXPECT_LE(pointsError, tolerance);
         EXPECT_LE(velocityError, tolerance);
+        if (tolerance == 0)
+        {
+            EXPECT_EQ(differingStateFiles(caseA, caseB, twoT), 0);
+        }
         // The column moves: not a comparison of two resting states
         EXPECT_GT(maxU, 1e-3);
 
@@ -1916,7 +1961,68 @@ TEST_F(SolverRestart, asciiRestartReproducesContinuousRunExactly)
 
 TEST_F(SolverRestart, binaryRestartReproducesContinuousRunExactly)
 {
-    compareRestartedWithContinuous("binary");
+    // The doubles as they are: bit for bit
+    compareRestartedWithContinuous("binary", 0);
+}
+
+
+TEST_F(SolverRestart, stateIsBinaryWithoutWriteFormatAndRestartsBitForBit)
+{
+    // No writeFormat: the state in OpenFOAM's binary format (the default),
+    // and the restart ends where the continuous run does, every file with
+    // the same bytes
+    compareRestartedWithContinuous("", 0);
+    if (HasFailure()) return;
+    for (const std::string name : {"points", "U"})
+    {
+        const std::string text = readText(caseDir_/"0.1"/"spem"/name);
+        EXPECT_TRUE
+        (
+            std::regex_search
+            (
+                text.substr(0, text.find('}')), std::regex("format\\s+binary")
+            )
+        ) << name << ":\n" << text.substr(0, 600);
+    }
+}
+
+
+TEST_F(SolverRestart, asciiStateRestartsUnderTheBinaryDefault)
+{
+    // A case written in ascii (as every tutorial was) continues, bit for
+    // bit, when writeFormat is taken out: a state is read in the format its
+    // files say, and the next ones are binary
+    const std::string T = "0.1", twoT = "0.2";
+    setControl("deltaT", "1e-3");
+    setControl("writeInterval", "50");
+    removeControl("writeFormat");
+    setControl("endTime", twoT);
+    runExpectingSuccess();
+    if (HasFailure()) return;
+    const fs::path caseA = caseDir_;
+
+    setControl("writeFormat", "ascii");
+    setControl("endTime", T);
+    runExpectingSuccess();
+    if (HasFailure()) return;
+    const fs::path caseB = caseDir_;
+    ASSERT_TRUE(contains(readText(caseB/T/"spem"/"points"), "format      ascii"));
+    removeControl("writeFormat");
+    setControl("endTime", twoT);
+    writeDictionaries();
+    ASSERT_EQ(runSolver("log.spemFoam.restart"), 0)
+        << log("log.spemFoam.restart");
+    expectInLog(log("log.spemFoam.restart"), {"Restart: read node positions"});
+
+    EXPECT_EQ(differingStateFiles(caseA, caseB, twoT), 0);
+    EXPECT_EQ
+    (
+        relativeDifference
+        (
+            readState(twoT, "points", caseA), readState(twoT, "points", caseB)
+        ),
+        0
+    );
 }
 
 
@@ -1967,31 +2073,6 @@ TEST_F(SolverRestart, everyWrittenStateListsItsFilesAndNoPartialFolderIsLeft)
         EXPECT_TRUE(contains(list, "points")) << list;
     }
     EXPECT_EQ(nStates, 3);    // 0, 0.01, 0.02
-}
-
-
-//- Every file of <time>/spem of case A is in B's, with the same bytes;
-//  the number of files that differ (0: bit for bit)
-int differingStateFiles
-(
-    const fs::path& caseA,
-    const fs::path& caseB,
-    const std::string& time
-)
-{
-    int nDiffer = 0;
-    for (const fs::directory_entry& f : fs::directory_iterator(caseA/time/"spem"))
-    {
-        const fs::path other = caseB/time/"spem"/f.path().filename();
-        const bool same =
-            fs::exists(other) && readText(f.path()) == readText(other);
-        if (!same)
-        {
-            ++nDiffer;
-            std::cout << "differs: " << other << std::endl;
-        }
-    }
-    return nDiffer;
 }
 
 
