@@ -22,6 +22,10 @@ Description
                            process, a NaN injected): the last good state,
                            in memory and written, is the previous step's,
                            elements, particles and mass, and restarts
+    Solver.* (Output)      vtkFields writes exactly the arrays named, a
+                           name no block has stops naming the file, the
+                           keyword and the valid names; vtkFormat sets
+                           how the pieces store their arrays
     SolverRestart.*        a run continued from its latest time ends in
                            the same state as a continuous run, in ascii,
                            in binary (the default without writeFormat)
@@ -1841,6 +1845,171 @@ TEST_F(SolverRollback, blowUpInTheNextAdvanceKeepsTheParticlesOfTheLastStep)
     expectRestartRuns(lastGoodTime);
 }
 
+
+// * * * * * * * * * * * * * * * * * Output  * * * * * * * * * * * * * * * * //
+
+//- Names of the arrays of one section (PointData, CellData) of a VTK XML
+//  piece's header
+std::vector<std::string> vtkArrayNames
+(
+    const std::string& header,
+    const std::string& section
+)
+{
+    const std::size_t begin = header.find("<" + section);
+    const std::size_t end = header.find("</" + section + ">");
+    std::vector<std::string> names;
+    if (begin == std::string::npos || end == std::string::npos) return names;
+    for (const std::string& tag : xmlTags(header.substr(begin, end - begin), "DataArray"))
+    {
+        names.push_back(xmlAttribute(tag, "Name"));
+    }
+    std::sort(names.begin(), names.end());
+    return names;
+}
+
+
+//- The pieces of the last time of a case's series: block name -> header
+std::map<std::string, std::string> lastVtkPieces(const fs::path& pvdFile)
+{
+    std::map<std::string, std::string> pieces;
+    const std::vector<std::string> entries =
+        xmlTags(readText(pvdFile), "DataSet");
+    if (entries.empty()) return pieces;
+    const fs::path vtm =
+        pvdFile.parent_path()/xmlAttribute(entries.back(), "file");
+    for (const std::string& block : xmlTags(readText(vtm), "DataSet"))
+    {
+        pieces[xmlAttribute(block, "name")] =
+            vtkXmlHeader(vtm.parent_path()/xmlAttribute(block, "file"));
+    }
+    return pieces;
+}
+
+
+TEST_F(Solver, vtkFieldsWritesExactlyTheChosenArrays)
+{
+    using names = std::vector<std::string>;
+    // Without vtkFields: all (the selection, not the case, removes them)
+    runExpectingSuccess();
+    if (HasFailure()) return;
+    std::map<std::string, std::string> pieces = lastVtkPieces(pvd());
+    ASSERT_TRUE(pieces.count("elements")) << readText(pvd());
+    EXPECT_EQ
+    (
+        vtkArrayNames(pieces["elements"], "PointData"),
+        (names{"displacement", "velocity"})
+    );
+    EXPECT_EQ
+    (
+        vtkArrayNames(pieces["elements"], "CellData"),
+        (names{"density", "pressure", "region", "stress", "vonMisesStress"})
+    );
+
+    // Elements (method SPEM) and particles (method SPH)
+    setControl("vtkFields", "(velocity pressure level)");
+    runExpectingSuccess();
+    if (HasFailure()) return;
+    pieces = lastVtkPieces(pvd());
+    ASSERT_TRUE(pieces.count("elements")) << readText(pvd());
+    EXPECT_EQ
+    (
+        vtkArrayNames(pieces["elements"], "PointData"), (names{"velocity"})
+    ) << pieces["elements"];
+    EXPECT_EQ
+    (
+        vtkArrayNames(pieces["elements"], "CellData"), (names{"pressure"})
+    ) << pieces["elements"];
+
+    useSPH();
+    runExpectingSuccess();
+    if (HasFailure()) return;
+    pieces = lastVtkPieces(pvd());
+    ASSERT_TRUE(pieces.count("particles")) << readText(pvd());
+    ASSERT_TRUE(pieces.count("wallParticles")) << readText(pvd());
+    EXPECT_EQ
+    (
+        vtkArrayNames(pieces["particles"], "PointData"),
+        (names{"level", "pressure", "velocity"})
+    ) << pieces["particles"];
+    EXPECT_EQ
+    (
+        vtkArrayNames(pieces["wallParticles"], "PointData"),
+        (names{"pressure"})
+    ) << pieces["wallParticles"];
+    // The points are always there
+    const std::vector<std::string> piece = xmlTags(pieces["particles"], "Piece");
+    ASSERT_EQ(piece.size(), 1u);
+    EXPECT_EQ
+    (
+        xmlAttribute(piece[0], "NumberOfPoints"),
+        std::to_string(2*nCellsX*nCellsY)
+    );
+    // The restart state is whole whatever vtkFields says
+    EXPECT_TRUE(fs::exists(caseDir_/"0.02"/"spem"/"particleMass"));
+}
+
+
+TEST_F(Solver, unknownVtkFieldStopsNamingFileKeywordAndValidFields)
+{
+    setControl("vtkFields", "(velocity presure)");
+    const std::string text = runExpectingFatalError();
+    expectInLog
+    (
+        text,
+        {
+            "FATAL IO ERROR", "'presure'", "vtkFields",
+            "system/controlDict", "Valid fields", "pressure",
+            "smoothingLength"
+        }
+    );
+    // Before the first step: nothing written
+    EXPECT_FALSE(fs::exists(pvd())) << text;
+}
+
+
+TEST_F(Solver, unknownVtkFormatStopsListingValidFormats)
+{
+    setControl("vtkFormat", "lz5");
+    const std::string text = runExpectingFatalError();
+    expectInLog
+    (
+        text,
+        {"FATAL IO ERROR", "'lz5'", "vtkFormat", "system/controlDict", "raw"}
+    );
+}
+
+
+TEST_F(Solver, vtkFormatChoosesHowTheArraysAreStored)
+{
+    // What the piece headers say; that VTK reads each back with the same
+    // values is vtkOutputTests' VtkSeries.everyFormatReadsBackWithTheSameValues
+    const std::vector<std::pair<std::string, std::string>> formats
+    {
+        {"", "format=\"appended\""},        // the default, raw
+        {"raw", "format=\"appended\""},
+        {"lz4", "compressor=\"vtkLZ4DataCompressor\""},
+        {"zlib", "compressor=\"vtkZLibDataCompressor\""},
+        {"ascii", "format=\"ascii\""}
+    };
+    for (const auto& [format, mark] : formats)
+    {
+        SCOPED_TRACE("vtkFormat " + format);
+        if (!format.empty()) setControl("vtkFormat", format);
+        setControl("endTime", "0.01");
+        runExpectingSuccess();
+        if (HasFailure()) return;
+        const std::string header = lastVtkPieces(pvd())["elements"];
+        EXPECT_TRUE(contains(header, mark)) << header.substr(0, 800);
+        if (format.empty() || format == "raw")
+        {
+            EXPECT_FALSE(contains(header, "compressor=")) << header;
+        }
+    }
+}
+
+
+// * * * * * * * * * * * * * * * * * Restart * * * * * * * * * * * * * * * * //
 
 //- Every file of <time>/spem of case A is in B's, with the same bytes;
 //  the number of files that differ (0: bit for bit)
