@@ -22,8 +22,14 @@ Description
                            process, a NaN injected): the last good state,
                            in memory and written, is the previous step's,
                            elements, particles and mass, and restarts
+    Solver.* (Output)      vtkFields writes exactly the arrays named, a
+                           name no block has stops naming the file, the
+                           keyword and the valid names; vtkFormat sets
+                           how the pieces store their arrays
     SolverRestart.*        a run continued from its latest time ends in
-                           the same state as a continuous run (also with
+                           the same state as a continuous run, in ascii,
+                           in binary (the default without writeFormat)
+                           and from an ascii state under binary (also with
                            an elastic plate under the column whose
                            sub-cycling state is part of the restart)
     SolverSubCycling.*     the plate sub-cycles with subCycling on and the
@@ -393,6 +399,20 @@ protected:
             }
         }
         controls_.emplace_back(key, value);
+    }
+
+    //- Take a top-level entry out of system/controlDict (its default)
+    void removeControl(const std::string& key)
+    {
+        controls_.erase
+        (
+            std::remove_if
+            (
+                controls_.begin(), controls_.end(),
+                [&](const auto& kv) { return kv.first == key; }
+            ),
+            controls_.end()
+        );
     }
 
     //- Replace text in one of the dictionary bodies; fails the test if the
@@ -1826,7 +1846,195 @@ TEST_F(SolverRollback, blowUpInTheNextAdvanceKeepsTheParticlesOfTheLastStep)
 }
 
 
+// * * * * * * * * * * * * * * * * * Output  * * * * * * * * * * * * * * * * //
+
+//- Names of the arrays of one section (PointData, CellData) of a VTK XML
+//  piece's header
+std::vector<std::string> vtkArrayNames
+(
+    const std::string& header,
+    const std::string& section
+)
+{
+    const std::size_t begin = header.find("<" + section);
+    const std::size_t end = header.find("</" + section + ">");
+    std::vector<std::string> names;
+    if (begin == std::string::npos || end == std::string::npos) return names;
+    for (const std::string& tag : xmlTags(header.substr(begin, end - begin), "DataArray"))
+    {
+        names.push_back(xmlAttribute(tag, "Name"));
+    }
+    std::sort(names.begin(), names.end());
+    return names;
+}
+
+
+//- The pieces of the last time of a case's series: block name -> header
+std::map<std::string, std::string> lastVtkPieces(const fs::path& pvdFile)
+{
+    std::map<std::string, std::string> pieces;
+    const std::vector<std::string> entries =
+        xmlTags(readText(pvdFile), "DataSet");
+    if (entries.empty()) return pieces;
+    const fs::path vtm =
+        pvdFile.parent_path()/xmlAttribute(entries.back(), "file");
+    for (const std::string& block : xmlTags(readText(vtm), "DataSet"))
+    {
+        pieces[xmlAttribute(block, "name")] =
+            vtkXmlHeader(vtm.parent_path()/xmlAttribute(block, "file"));
+    }
+    return pieces;
+}
+
+
+TEST_F(Solver, vtkFieldsWritesExactlyTheChosenArrays)
+{
+    using names = std::vector<std::string>;
+    // Without vtkFields: all (the selection, not the case, removes them)
+    runExpectingSuccess();
+    if (HasFailure()) return;
+    std::map<std::string, std::string> pieces = lastVtkPieces(pvd());
+    ASSERT_TRUE(pieces.count("elements")) << readText(pvd());
+    EXPECT_EQ
+    (
+        vtkArrayNames(pieces["elements"], "PointData"),
+        (names{"displacement", "velocity"})
+    );
+    EXPECT_EQ
+    (
+        vtkArrayNames(pieces["elements"], "CellData"),
+        (names{"density", "pressure", "region", "stress", "vonMisesStress"})
+    );
+
+    // Elements (method SPEM) and particles (method SPH)
+    setControl("vtkFields", "(velocity pressure level)");
+    runExpectingSuccess();
+    if (HasFailure()) return;
+    pieces = lastVtkPieces(pvd());
+    ASSERT_TRUE(pieces.count("elements")) << readText(pvd());
+    EXPECT_EQ
+    (
+        vtkArrayNames(pieces["elements"], "PointData"), (names{"velocity"})
+    ) << pieces["elements"];
+    EXPECT_EQ
+    (
+        vtkArrayNames(pieces["elements"], "CellData"), (names{"pressure"})
+    ) << pieces["elements"];
+
+    useSPH();
+    runExpectingSuccess();
+    if (HasFailure()) return;
+    pieces = lastVtkPieces(pvd());
+    ASSERT_TRUE(pieces.count("particles")) << readText(pvd());
+    ASSERT_TRUE(pieces.count("wallParticles")) << readText(pvd());
+    EXPECT_EQ
+    (
+        vtkArrayNames(pieces["particles"], "PointData"),
+        (names{"level", "pressure", "velocity"})
+    ) << pieces["particles"];
+    EXPECT_EQ
+    (
+        vtkArrayNames(pieces["wallParticles"], "PointData"),
+        (names{"pressure"})
+    ) << pieces["wallParticles"];
+    // The points are always there
+    const std::vector<std::string> piece = xmlTags(pieces["particles"], "Piece");
+    ASSERT_EQ(piece.size(), 1u);
+    EXPECT_EQ
+    (
+        xmlAttribute(piece[0], "NumberOfPoints"),
+        std::to_string(2*nCellsX*nCellsY)
+    );
+    // The restart state is whole whatever vtkFields says
+    EXPECT_TRUE(fs::exists(caseDir_/"0.02"/"spem"/"particleMass"));
+}
+
+
+TEST_F(Solver, unknownVtkFieldStopsNamingFileKeywordAndValidFields)
+{
+    setControl("vtkFields", "(velocity presure)");
+    const std::string text = runExpectingFatalError();
+    expectInLog
+    (
+        text,
+        {
+            "FATAL IO ERROR", "'presure'", "vtkFields",
+            "system/controlDict", "Valid fields", "pressure",
+            "smoothingLength"
+        }
+    );
+    // Before the first step: nothing written
+    EXPECT_FALSE(fs::exists(pvd())) << text;
+}
+
+
+TEST_F(Solver, unknownVtkFormatStopsListingValidFormats)
+{
+    setControl("vtkFormat", "lz5");
+    const std::string text = runExpectingFatalError();
+    expectInLog
+    (
+        text,
+        {"FATAL IO ERROR", "'lz5'", "vtkFormat", "system/controlDict", "raw"}
+    );
+}
+
+
+TEST_F(Solver, vtkFormatChoosesHowTheArraysAreStored)
+{
+    // What the piece headers say; that VTK reads each back with the same
+    // values is vtkOutputTests' VtkSeries.everyFormatReadsBackWithTheSameValues
+    const std::vector<std::pair<std::string, std::string>> formats
+    {
+        {"", "format=\"appended\""},        // the default, raw
+        {"raw", "format=\"appended\""},
+        {"lz4", "compressor=\"vtkLZ4DataCompressor\""},
+        {"zlib", "compressor=\"vtkZLibDataCompressor\""},
+        {"ascii", "format=\"ascii\""}
+    };
+    for (const auto& [format, mark] : formats)
+    {
+        SCOPED_TRACE("vtkFormat " + format);
+        if (!format.empty()) setControl("vtkFormat", format);
+        setControl("endTime", "0.01");
+        runExpectingSuccess();
+        if (HasFailure()) return;
+        const std::string header = lastVtkPieces(pvd())["elements"];
+        EXPECT_TRUE(contains(header, mark)) << header.substr(0, 800);
+        if (format.empty() || format == "raw")
+        {
+            EXPECT_FALSE(contains(header, "compressor=")) << header;
+        }
+    }
+}
+
+
 // * * * * * * * * * * * * * * * * * Restart * * * * * * * * * * * * * * * * //
+
+//- Every file of <time>/spem of case A is in B's, with the same bytes;
+//  the number of files that differ (0: bit for bit)
+int differingStateFiles
+(
+    const fs::path& caseA,
+    const fs::path& caseB,
+    const std::string& time
+)
+{
+    int nDiffer = 0;
+    for (const fs::directory_entry& f : fs::directory_iterator(caseA/time/"spem"))
+    {
+        const fs::path other = caseB/time/"spem"/f.path().filename();
+        const bool same =
+            fs::exists(other) && readText(f.path()) == readText(other);
+        if (!same)
+        {
+            ++nDiffer;
+            std::cout << "differs: " << other << std::endl;
+        }
+    }
+    return nDiffer;
+}
+
 
 //- Fixture: a run continued from its latest time against a continuous one
 class SolverRestart : public Solver
@@ -1834,8 +2042,9 @@ class SolverRestart : public Solver
 protected:
 
     //- Run A continuously to 2T, and B to T and then on to 2T from its
-    //  latest time, in the given writeFormat; compare their final states
-    //  (to the relative tolerance) and their ParaView series
+    //  latest time, in the given writeFormat (empty: none, the default);
+    //  compare their final states (to the relative tolerance; at 0 also
+    //  every file of the state byte for byte) and their ParaView series
     void compareRestartedWithContinuous
     (
         const std::string& format,
@@ -1846,7 +2055,8 @@ protected:
         // damping term is part of what must restart exactly
         const std::string T = "0.1", twoT = "0.2";
         const std::vector<double> writeTimes{0, 0.05, 0.1, 0.15, 0.2};
-        setControl("writeFormat", format);
+        if (format.empty()) removeControl("writeFormat");
+        else setControl("writeFormat", format);
         setControl("deltaT", "1e-3");
         setControl("writeInterval", "50");
         damping_ = "    massProportional 5;\n";
@@ -1888,6 +2098,10 @@ protected:
             << velocityError << std::endl;
         EXPECT_LE(pointsError, tolerance);
         EXPECT_LE(velocityError, tolerance);
+        if (tolerance == 0)
+        {
+            EXPECT_EQ(differingStateFiles(caseA, caseB, twoT), 0);
+        }
         // The column moves: not a comparison of two resting states
         EXPECT_GT(maxU, 1e-3);
 
@@ -1916,7 +2130,68 @@ TEST_F(SolverRestart, asciiRestartReproducesContinuousRunExactly)
 
 TEST_F(SolverRestart, binaryRestartReproducesContinuousRunExactly)
 {
-    compareRestartedWithContinuous("binary");
+    // The doubles as they are: bit for bit
+    compareRestartedWithContinuous("binary", 0);
+}
+
+
+TEST_F(SolverRestart, stateIsBinaryWithoutWriteFormatAndRestartsBitForBit)
+{
+    // No writeFormat: the state in OpenFOAM's binary format (the default),
+    // and the restart ends where the continuous run does, every file with
+    // the same bytes
+    compareRestartedWithContinuous("", 0);
+    if (HasFailure()) return;
+    for (const std::string name : {"points", "U"})
+    {
+        const std::string text = readText(caseDir_/"0.1"/"spem"/name);
+        EXPECT_TRUE
+        (
+            std::regex_search
+            (
+                text.substr(0, text.find('}')), std::regex("format\\s+binary")
+            )
+        ) << name << ":\n" << text.substr(0, 600);
+    }
+}
+
+
+TEST_F(SolverRestart, asciiStateRestartsUnderTheBinaryDefault)
+{
+    // A case written in ascii (as every tutorial was) continues, bit for
+    // bit, when writeFormat is taken out: a state is read in the format its
+    // files say, and the next ones are binary
+    const std::string T = "0.1", twoT = "0.2";
+    setControl("deltaT", "1e-3");
+    setControl("writeInterval", "50");
+    removeControl("writeFormat");
+    setControl("endTime", twoT);
+    runExpectingSuccess();
+    if (HasFailure()) return;
+    const fs::path caseA = caseDir_;
+
+    setControl("writeFormat", "ascii");
+    setControl("endTime", T);
+    runExpectingSuccess();
+    if (HasFailure()) return;
+    const fs::path caseB = caseDir_;
+    ASSERT_TRUE(contains(readText(caseB/T/"spem"/"points"), "format      ascii"));
+    removeControl("writeFormat");
+    setControl("endTime", twoT);
+    writeDictionaries();
+    ASSERT_EQ(runSolver("log.spemFoam.restart"), 0)
+        << log("log.spemFoam.restart");
+    expectInLog(log("log.spemFoam.restart"), {"Restart: read node positions"});
+
+    EXPECT_EQ(differingStateFiles(caseA, caseB, twoT), 0);
+    EXPECT_EQ
+    (
+        relativeDifference
+        (
+            readState(twoT, "points", caseA), readState(twoT, "points", caseB)
+        ),
+        0
+    );
 }
 
 
@@ -1967,31 +2242,6 @@ TEST_F(SolverRestart, everyWrittenStateListsItsFilesAndNoPartialFolderIsLeft)
         EXPECT_TRUE(contains(list, "points")) << list;
     }
     EXPECT_EQ(nStates, 3);    // 0, 0.01, 0.02
-}
-
-
-//- Every file of <time>/spem of case A is in B's, with the same bytes;
-//  the number of files that differ (0: bit for bit)
-int differingStateFiles
-(
-    const fs::path& caseA,
-    const fs::path& caseB,
-    const std::string& time
-)
-{
-    int nDiffer = 0;
-    for (const fs::directory_entry& f : fs::directory_iterator(caseA/time/"spem"))
-    {
-        const fs::path other = caseB/time/"spem"/f.path().filename();
-        const bool same =
-            fs::exists(other) && readText(f.path()) == readText(other);
-        if (!same)
-        {
-            ++nDiffer;
-            std::cout << "differs: " << other << std::endl;
-        }
-    }
-    return nDiffer;
 }
 
 

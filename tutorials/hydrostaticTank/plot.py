@@ -8,9 +8,10 @@ Reads
     restart there is one folder per start time: all are read, joined and
     sorted by time (later folders win where times overlap);
   - the restart state of the last written time,
-    <latestTime>/spem/particlePositions and particleRho (OpenFOAM ascii
-    lists of the fluid particles: a count, then '(' one entry per line ')',
-    or the uniform form count{value}), and 0/spem/particlePositions for the
+    <latestTime>/spem/particlePositions and particleRho (OpenFOAM lists
+    of the fluid particles, binary or ascii: a count, then '(' the entries
+    ')', or in ascii the uniform form count{value}), and
+    0/spem/particlePositions for the
     initial height of the column;
   - rho0, c and initialPressure of the region water in
     constant/spemProperties, g from
@@ -50,6 +51,7 @@ sys.path.insert(0, os.path.join(
                                 "..", "..")),
     "bin", "tools"))
 from spemPostProcessing import isNumber, readFunctionObject  # noqa: E402
+from foamStateFiles import readFoamFile  # noqa: E402
 
 caseDir = os.path.dirname(os.path.abspath(__file__))
 probeDir = os.path.join(caseDir, "postProcessing", "pressure")
@@ -147,11 +149,21 @@ def readProbes():
 
 
 def readFoamList(path):
-    """Rows (lists of floats) of an OpenFOAM ascii list file."""
+    """Rows (lists of floats) of an OpenFOAM list file, ascii or binary."""
     if not os.path.isfile(path):
         sys.exit("plot.py: %s not found" % path)
-    with open(path) as f:
-        text = stripComments(f.read())
+    with open(path, "rb") as f:
+        data = f.read()
+    header = data[:data.find(b"}", data.find(b"FoamFile")) + 1]
+    if re.search(rb"format\s+binary", header):
+        listed = readFoamFile(path)
+        if listed is None:
+            sys.exit("plot.py: %s: not a list" % path)
+        cls, values = listed
+        nComponents = 3 if cls == "vectorField" else 1
+        return [values[k:k + nComponents]
+                for k in range(0, len(values), nComponents)]
+    text = stripComments(data.decode("latin-1"))
     text = re.sub(r"\bFoamFile\s*\{[^{}]*\}", " ", text)
 
     # Uniform list: N{value} or N{(x y z)}

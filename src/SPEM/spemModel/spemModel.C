@@ -433,6 +433,8 @@ Foam::spemModel::spemModel(Time& runTime)
     mesh_(triMesh::read(runTime)),
     bodies_(runTime),
     restart_(runTime),
+    // controlDict vtkFormat and vtkFields checked before the case is read
+    vtk_(new vtkModelWriter(runTime)),
     lastWrittenTime_(-GREAT)
 {
     checkKeywords
@@ -543,7 +545,6 @@ void Foam::spemModel::write(const bool force)
     lastWrittenTime_ = runTime_.value();
     const costBreakdown::scope timed(cost(), costBreakdown::output);
     restart_.write(method_->state());
-    if (!vtk_) vtk_.reset(new vtkModelWriter(runTime_));
     vtk_->write(method_->elements(), method_->particles(), bodies_);
     if (force)
     {

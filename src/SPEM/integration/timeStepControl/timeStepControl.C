@@ -47,7 +47,8 @@ void Foam::timeStepControl::checkControlDict() const
             "fileHandler", "DebugSwitches", "InfoSwitches",
             "OptimisationSwitches", "DimensionSets", "DimensionedConstants",
             "Tolerances", "logInterval", "maxSteps", "restartFallback",
-            "allowMaxCoAbove1", "subCycling", "subCyclingLoad"
+            "allowMaxCoAbove1", "subCycling", "subCyclingLoad", "vtkFormat",
+            "vtkFields"
         }
     );
 

@@ -63,7 +63,7 @@ void Foam::restartState::writeExact
     OFstream os
     (
         io.objectPath(),
-        ascii ? IOstream::ASCII : runTime_.writeFormat(),
+        ascii ? IOstream::ASCII : format(),
         IOstream::currentVersion,
         runTime_.writeCompression()
     );
@@ -78,6 +78,15 @@ void Foam::restartState::writeExact
             << "Could not write " << io.objectPath() << exit(FatalError);
     }
     written_.append(io.name());
+}
+
+
+Foam::IOstream::streamFormat Foam::restartState::format() const
+{
+    // Binary unless the case asks for ascii: 17 digits of text per double
+    // were most of the time a write took (issue 18)
+    return runTime_.controlDict().found("writeFormat")
+        ? runTime_.writeFormat() : IOstream::BINARY;
 }
 
 

@@ -140,7 +140,37 @@ Foam::vtkOutput::particleBlock wallBlock(const blockData::gathered& g)
     return b;
 }
 
+//- Keep only the fields named in selected (empty: all)
+void select
+(
+    std::vector<Foam::vtkOutput::field>& fields,
+    const Foam::wordHashSet& selected
+)
+{
+    if (selected.empty()) return;
+    std::vector<Foam::vtkOutput::field> kept;
+    for (Foam::vtkOutput::field& f : fields)
+    {
+        if (selected.found(f.name)) kept.push_back(std::move(f));
+    }
+    fields = std::move(kept);
+}
+
+
+//- The vtkFormat names, in the order of seriesWriter::format
+const Foam::wordList formatNames{"raw", "lz4", "zlib", "ascii"};
+
 } // End anonymous namespace
+
+
+// * * * * * * * * * * * * * * * Static Data * * * * * * * * * * * * * * * //
+
+const Foam::wordList Foam::vtkModelWriter::fieldNames
+{
+    "velocity", "displacement", "pressure", "density", "stress",
+    "vonMisesStress", "region", "freeSurface", "smoothingLength", "level",
+    "id", "body"
+};
 
 
 // * * * * * * * * * * * * * Private Member Functions  * * * * * * * * * * * //
@@ -168,8 +198,42 @@ void Foam::vtkModelWriter::makeBodyOutlines(const rigidBodies& bodies)
 
 Foam::vtkModelWriter::vtkModelWriter(const Time& runTime)
 :
-    runTime_(runTime)
-{}
+    runTime_(runTime),
+    format_(vtkOutput::seriesWriter::format::raw)
+{
+    const dictionary& controls = runTime.controlDict();
+    const word format(controls.getOrDefault<word>("vtkFormat", "raw"));
+    const label index = formatNames.find(format);
+    if (index < 0)
+    {
+        FatalIOErrorInFunction(controls)
+            << "Unknown vtkFormat '" << format << "' in " << controls.name()
+            << nl << "Valid formats: " << formatNames
+            << exit(FatalIOError);
+    }
+    format_ = vtkOutput::seriesWriter::format(index);
+
+    if (!controls.found("vtkFields")) return;
+    const wordList selected(controls.get<wordList>("vtkFields"));
+    if (selected.empty())
+    {
+        FatalIOErrorInFunction(controls)
+            << "vtkFields in " << controls.name() << " is empty: name at"
+            << " least one of " << fieldNames << " (or leave vtkFields out"
+            << " to write all)" << exit(FatalIOError);
+    }
+    for (const word& name : selected)
+    {
+        if (!fieldNames.found(name))
+        {
+            FatalIOErrorInFunction(controls)
+                << "Unknown field '" << name << "' in vtkFields of "
+                << controls.name() << nl << "Valid fields: " << fieldNames
+                << exit(FatalIOError);
+        }
+        fields_.insert(name);
+    }
+}
 
 
 Foam::vtkModelWriter::~vtkModelWriter() = default;
@@ -231,6 +295,16 @@ void Foam::vtkModelWriter::write
         triangleBlocks.push_back(std::move(bb));
     }
 
+    for (vtkOutput::triangleBlock& b : triangleBlocks)
+    {
+        select(b.pointData, fields_);
+        select(b.cellData, fields_);
+    }
+    for (vtkOutput::particleBlock& b : particleBlocks)
+    {
+        select(b.pointData, fields_);
+    }
+
     try
     {
         if (!series_)
@@ -241,7 +315,8 @@ void Foam::vtkModelWriter::write
                 (
                     runTime_.path()/"VTK",
                     runTime_.caseName().name(),
-                    runTime_.value()
+                    runTime_.value(),
+                    format_
                 )
             );
         }

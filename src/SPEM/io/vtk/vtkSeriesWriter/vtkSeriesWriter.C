@@ -471,13 +471,13 @@ void writeAtomically(const fs::path& file, const std::string& text)
 }
 
 
-//- Write one block with VTK's XML writer for its type: binary, appended
-//  (raw, not base64), compressed as chosen
+//- Write one block with VTK's XML writer for its type: binary appended
+//  (raw, not base64), compressed as chosen, or ascii
 void writePiece
 (
     vtkDataSet* dataSet,
     const fs::path& file,
-    const seriesWriter::compression method
+    const seriesWriter::format dataFormat
 )
 {
     vtkSmartPointer<vtkXMLWriter> writer;
@@ -493,16 +493,20 @@ void writePiece
     writer->SetInputData(dataSet);
     writer->SetDataModeToAppended();
     writer->EncodeAppendedDataOff();
-    switch (method)
+    switch (dataFormat)
     {
-        case seriesWriter::compression::zlib:
+        case seriesWriter::format::raw:
+            writer->SetCompressorTypeToNone();
+            break;
+        case seriesWriter::format::lz4:
+            writer->SetCompressorTypeToLZ4();
+            break;
+        case seriesWriter::format::zlib:
             writer->SetCompressorTypeToZLib();
             writer->SetCompressionLevel(seriesWriter::zlibLevel);
             break;
-        case seriesWriter::compression::lz4:
-            writer->SetCompressorTypeToLZ4();
-            break;
-        case seriesWriter::compression::none:
+        case seriesWriter::format::ascii:
+            writer->SetDataModeToAscii();
             writer->SetCompressorTypeToNone();
             break;
     }
@@ -579,12 +583,12 @@ Foam::vtkOutput::seriesWriter::seriesWriter
     const std::string& dir,
     const std::string& baseName,
     const double startTime,
-    const compression method
+    const format dataFormat
 )
 :
     dir_(dir),
     baseName_(baseName),
-    compression_(method),
+    format_(dataFormat),
     entries_(),
     nextIndex_(0)
 {
@@ -705,7 +709,7 @@ void Foam::vtkOutput::seriesWriter::write
         );
         writePiece
         (
-            blocks[i], fs::path(dir_)/blockFiles.back(), compression_
+            blocks[i], fs::path(dir_)/blockFiles.back(), format_
         );
     }
 
