@@ -380,10 +380,30 @@ Foam::spemMethods::SPEM::SPEM
     PtrList<spemMaterial>& materials
 )
 :
+    SPEM(c, materials, 0)
+{}
+
+
+Foam::spemMethods::SPEM::SPEM
+(
+    const spemCase& c,
+    PtrList<spemMaterial>& materials,
+    const scalar refinedRadiusRatio
+)
+:
     spemMethod(c),
     bodyReach_(0),
     bodyContact_(0)
 {
+    refinedRadiusRatio_ = refinedRadiusRatio;
+    const dictionary& conversionDict = c.schemes.subOrEmptyDict("conversion");
+    if (refinedRadiusRatio_ == 0 && conversionDict.found("refinedRadiusRatio"))
+    {
+        FatalIOErrorInFunction(conversionDict)
+            << "conversion/refinedRadiusRatio is an entry of method"
+            << " multiResolutionSPEM: method " << c.schemes.get<word>("method")
+            << " makes one particle per element" << exit(FatalIOError);
+    }
     // Fluid elements fitted to the rigid bodies: before anything takes
     // masses or geometry from the mesh
     bodyElementCoupling::preparedMesh bodyMesh;
