@@ -97,7 +97,8 @@ void Foam::spemMethods::SPEM::createParticleHalf
         new elementParticleCoupling
         (
             case_.schemes,
-            sphFluid::controls::read(case_.schemes).smoothingLengthRatio
+            sphFluid::controls::read(case_.schemes).smoothingLengthRatio,
+            refinedRadiusRatio_
         )
     );
     collectCouplings();
@@ -447,7 +448,8 @@ Foam::spemMethods::SPEM::SPEM
         // writes later
         elementParticleCoupling
         (
-            c.schemes, sphFluid::controls::read(c.schemes).smoothingLengthRatio
+            c.schemes, sphFluid::controls::read(c.schemes).smoothingLengthRatio,
+            refinedRadiusRatio_
         );
     }
     if (bodyElements_)
