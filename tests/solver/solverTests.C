@@ -1122,6 +1122,22 @@ TEST_F(Solver, multiResolutionSPEMSplitsEachPresetElementIntoThreeRefinedParticl
     // Right triangles of half a cell, all of one area
     const double dx = columnWidth/nCellsX, dy = columnHeight/nCellsY;
     const double hRefined = 1.3*std::sqrt(0.5*dx*dy)/std::sqrt(3.0);
+
+    // The step of the run is the refined particles' acoustic one, h/c at
+    // rest (the elements' and the walls' allow more)
+    ASSERT_TRUE
+    (
+        std::regex_search
+        (
+            text, m,
+            std::regex
+            (
+                "Time step: stable ([-+.0-9eE]+) s at Courant number 1,"
+                " set by the acoustic limit of the fluid particles"
+            )
+        )
+    ) << text;
+    EXPECT_NEAR(std::stod(m[1].str()), hRefined/soundSpeed, 1e-9*hRefined);
     for (const std::string t : {"0", "0.02"})
     {
         SCOPED_TRACE(t);
