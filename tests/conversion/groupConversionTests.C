@@ -3,7 +3,12 @@ Description
     Unit tests of the element -> particle conversion of the SPEM (paper
     sect. 2.3.1, eqs. 17-18) and of its group grid: conservation of mass
     and momentum, one distorted element converting its whole group, and
-    the remnants a conversion leaves.
+    the remnants a conversion leaves. The refinement of the multi-
+    resolution SPEM (eqs. 19-22): three particles per element at the
+    midpoints between the barycentre and the nodes, m_e/3, rho_e and the
+    node's velocity each, mass exact and momentum to round-off on one
+    element and on a group, and the angular momentum and kinetic energy it
+    changes as the log reports them.
 
 \*---------------------------------------------------------------------------*/
 
@@ -429,6 +434,165 @@ TEST(GroupConversion, groupNextToASolidConvertsItsFluidOnly)
     const std::vector<label> converted = conversion.trianglesToConvert(*em);
     EXPECT_NE(std::find(converted.begin(), converted.end(), t0), converted.end());
     for (const label t : converted) EXPECT_FALSE(solid[t]) << t;
+}
+
+
+// * * * * * * * * * * * * Refinement (eqs. 19-22) * * * * * * * * * * * * //
+
+TEST(Refinement, splitsOneElementIntoThreeAtTheMidpointsWithNodeVelocities)
+{
+    // One scalene triangle with distinct node velocities (a rotation plus
+    // a stretch, so that eq. 21 changes the angular momentum)
+    const std::vector<scalar> x{0.1, 0.2, 1.3, 0.4, 0.5, 1.1};
+    const std::vector<scalar> v{0.3, -0.2, -0.1, 0.7, 0.9, 0.05};
+    const std::vector<label> nodes{0, 1, 2};
+    const scalar mElement = 1234.5, ratio = 1.3, beta = 1/std::sqrt(3.0);
+    Foam::particleSet ps;
+    Foam::refinementChange change;
+    ASSERT_EQ
+    (
+        Foam::appendParticlesFromElements
+        (
+            x, v, nodes, {mElement}, {0}, ratio, ps, beta, &change
+        ),
+        0
+    );
+    ASSERT_EQ(ps.size(), 3);
+
+    // By hand: A_e, x_M the barycentre, v_M the mean nodal velocity
+    const scalar area = 0.5*std::abs
+    (
+        (x[2] - x[0])*(x[5] - x[1]) - (x[3] - x[1])*(x[4] - x[0])
+    );
+    const scalar xM = (x[0] + x[2] + x[4])/3, yM = (x[1] + x[3] + x[5])/3;
+    const scalar uM = (v[0] + v[2] + v[4])/3, vM = (v[1] + v[3] + v[5])/3;
+    long double mass = 0, px = 0, py = 0;
+    scalar dL = 0, dE = 0;
+    for (label k = 0; k < 3; ++k)
+    {
+        SCOPED_TRACE(k);
+        const scalar xk = 0.5*(x[2*k] + xM), yk = 0.5*(x[2*k + 1] + yM);
+        EXPECT_NEAR(ps.positions()[2*k], xk, 1e-15);             // eq. (19)
+        EXPECT_NEAR(ps.positions()[2*k + 1], yk, 1e-15);
+        EXPECT_EQ(ps.mass()[k], mElement/3);                     // eq. (20)
+        EXPECT_NEAR(ps.density()[k], mElement/area, 1e-12*mElement/area);
+        EXPECT_EQ(ps.velocities()[2*k], v[2*k]);                 // eq. (21)
+        EXPECT_EQ(ps.velocities()[2*k + 1], v[2*k + 1]);
+        // Eq. (22): radius beta sqrt(A_e)/2, spacing beta sqrt(A_e)
+        EXPECT_NEAR
+        (
+            ps.smoothingLength()[k], ratio*beta*std::sqrt(area), 1e-15
+        );
+        EXPECT_EQ(ps.level()[k], 1);
+        EXPECT_EQ(ps.kinds()[k], Foam::particleSet::kind::fluid);
+        mass += ps.mass()[k];
+        px += ps.mass()[k]*ps.velocities()[2*k];
+        py += ps.mass()[k]*ps.velocities()[2*k + 1];
+        dL += mElement/3*((xk - xM)*v[2*k + 1] - (yk - yM)*v[2*k]);
+        dE += mElement/6*(Foam::sqr(v[2*k] - uM) + Foam::sqr(v[2*k + 1] - vM));
+    }
+    // The element's mass and its nodal momentum (eq. 17's m_e v_M)
+    EXPECT_NEAR(double(mass), mElement, 2e-16*mElement);
+    EXPECT_NEAR(double(px), mElement*uM, 1e-15*mElement);
+    EXPECT_NEAR(double(py), mElement*vM, 1e-15*mElement);
+    // The three have the element's area at beta = 1/sqrt(3)
+    EXPECT_NEAR(3*Foam::sqr(beta*std::sqrt(area)), area, 1e-15);
+
+    // What eq. (21) changes, as the log reports it
+    std::cout << "one element: eq. (21) changes L by " << change.angularMomentum
+        << " kg m^2/s, E by " << change.kineticEnergy << " J of "
+        << change.unsplitKineticEnergy << " J" << std::endl;
+    EXPECT_NEAR(change.angularMomentum, dL, 1e-12*std::abs(dL));
+    EXPECT_NEAR(change.kineticEnergy, dE, 1e-12*dE);
+    EXPECT_NEAR
+    (
+        change.unsplitKineticEnergy, 0.5*mElement*(uM*uM + vM*vM), 1e-12*mElement
+    );
+    EXPECT_GT(std::abs(dL), 1e-3*mElement);
+    EXPECT_GT(dE, 1e-2*mElement);
+}
+
+
+TEST(Refinement, conservesMassExactlyAndMomentumToRoundOffOnAGroup)
+{
+    // As conservesMassExactlyAndMomentumToRoundOff, with every converted
+    // element split into three: a non-uniform density, displaced nodes and
+    // random velocities, two conversions after another
+    const Foam::triMesh mesh =
+        testMeshes::build({{0, 1, 0, 1, 10, 10, "water"}});
+    std::vector<scalar> density(mesh.nTriangles());
+    for (label t = 0; t < mesh.nTriangles(); ++t)
+    {
+        density[t] = 1000 + 0.37*t;
+    }
+    auto em = testModels::model
+    (
+        mesh, testModels::materials(mesh, {{"water", water}}), {}, density
+    );
+    std::mt19937 gen(17);
+    std::uniform_real_distribution<scalar> u(-1, 1);
+    std::vector<scalar> x = mesh.points(), v(x.size());
+    for (scalar& c : x) c += 0.01*u(gen);
+    for (scalar& c : v) c = u(gen);
+    em->setState(x, v);
+    std::vector<scalar> elementMass(mesh.nTriangles());
+    for (label el = 0; el < em->nElements(); ++el)
+    {
+        elementMass[em->elementTriangle()[el]] = em->elementMass()[el];
+    }
+
+    Foam::particleSet ps;
+    const totals before = sum(*em, ps);
+    std::vector<label> first, second;
+    for (label t = 0; t < mesh.nTriangles(); ++t)
+    {
+        if (t % 5 == 0) first.push_back(t);
+        else if (t % 5 == 3) second.push_back(t);
+    }
+    const scalar beta = 0.55;
+    Foam::refinementChange change;
+    Foam::convertElements(mesh, first, 1.3, *em, ps, beta, &change);
+    Foam::convertElements(mesh, second, 1.3, *em, ps, beta, &change);
+
+    const label nConverted = label(first.size() + second.size());
+    ASSERT_EQ(ps.size(), 3*nConverted);
+    EXPECT_EQ(em->nElements(), mesh.nTriangles() - nConverted);
+    // Each refined particle a third of its element's mass (eq. 20), at the
+    // midpoint of its node and the barycentre (eq. 19), level 1
+    for (label e = 0; e < label(first.size()); ++e)
+    {
+        const label* n = &mesh.triangles()[3*first[e]];
+        const scalar cx = (x[2*n[0]] + x[2*n[1]] + x[2*n[2]])/3;
+        const scalar cy = (x[2*n[0] + 1] + x[2*n[1] + 1] + x[2*n[2] + 1])/3;
+        for (label k = 0; k < 3; ++k)
+        {
+            const label i = 3*e + k;
+            EXPECT_EQ(ps.mass()[i], elementMass[first[e]]/3);
+            EXPECT_NEAR(ps.positions()[2*i], 0.5*(x[2*n[k]] + cx), 1e-15);
+            EXPECT_NEAR
+            (
+                ps.positions()[2*i + 1], 0.5*(x[2*n[k] + 1] + cy), 1e-15
+            );
+            EXPECT_EQ(ps.velocities()[2*i], v[2*n[k]]);
+            EXPECT_EQ(ps.level()[i], 1);
+        }
+    }
+
+    const totals after = sum(*em, ps);
+    std::cout << "refined group: mass relative change "
+        << double((after.m - before.m)/before.m) << "; momentum change ("
+        << double(after.px - before.px) << ' ' << double(after.py - before.py)
+        << ") of |p| " << double(std::hypot(before.px, before.py))
+        << "; eq. (21) changed L by " << change.angularMomentum
+        << " kg m^2/s, E by " << change.kineticEnergy << " J of "
+        << change.unsplitKineticEnergy << " J" << std::endl;
+    // Mass: three thirds of each element, summed in long double
+    EXPECT_NEAR(double(after.m), double(before.m), 1e-14*double(before.m));
+    const double scale = double(before.m);   // |v| <= sqrt(2)
+    EXPECT_NEAR(double(after.px), double(before.px), 1e-13*scale);
+    EXPECT_NEAR(double(after.py), double(before.py), 1e-13*scale);
+    // Random node velocities: the split raises the kinetic energy
+    EXPECT_GT(change.kineticEnergy, 0);
 }
 
 

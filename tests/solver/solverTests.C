@@ -1106,15 +1106,138 @@ TEST_F(Solver, regionNotInMeshStops)
 }
 
 
-TEST_F(Solver, multiResolutionMethodIsRejectedNotRunAsElements)
+TEST_F(Solver, multiResolutionSPEMSplitsEachPresetElementIntoThreeRefinedParticles)
 {
-    schemes_ = "method          multiResolutionSPEM;\n";
+    // The bottom of the column a preset particle region: under method
+    // multiResolutionSPEM its elements become three refined particles
+    // each (eqs. 19-22), level 1, h = 1.3 sqrt(A_e)/sqrt(3), in the state
+    // and the ParaView series
+    schemes_ =
+        "method          multiResolutionSPEM;\n"
+        "conversion\n{\n    presetParticleRegions\n    {\n"
+        "        bottom { type box; min (-1 -1 0); max (1 0.3 0); }\n"
+        "    }\n}\n";
+    const std::string text = runExpectingSuccess();
+    if (HasFailure()) return;
+    expectInLog
+    (
+        text,
+        {
+            "multi-resolution: each converted element becomes 3 refined",
+            "refinement (eqs. 19-22): ", "\nEnd"
+        }
+    );
+    std::smatch m;
+    ASSERT_TRUE
+    (
+        std::regex_search
+        (
+            text, m,
+            std::regex("preset particle regions: (\\d+) fluid elements")
+        )
+    ) << text;
+    const int nPreset = std::stoi(m[1].str());
+    EXPECT_GT(nPreset, 2*nCellsX);
+
+    // Right triangles of half a cell, all of one area
+    const double dx = columnWidth/nCellsX, dy = columnHeight/nCellsY;
+    const double hRefined = 1.3*std::sqrt(0.5*dx*dy)/std::sqrt(3.0);
+
+    // The step of the run is the refined particles' acoustic one, h/c at
+    // rest (the elements' and the walls' allow more)
+    ASSERT_TRUE
+    (
+        std::regex_search
+        (
+            text, m,
+            std::regex
+            (
+                "Time step: stable ([-+.0-9eE]+) s at Courant number 1,"
+                " set by the acoustic limit of the fluid particles"
+            )
+        )
+    ) << text;
+    EXPECT_NEAR(std::stod(m[1].str()), hRefined/soundSpeed, 1e-9*hRefined);
+    for (const std::string t : {"0", "0.02"})
+    {
+        SCOPED_TRACE(t);
+        Foam::scalarField h;
+        Foam::labelList level;
+        try
+        {
+            h = readScalarState(t, "particleH");
+            level = readStateField<Foam::labelIOList>(t, "particleLevel", "");
+        }
+        catch (const Foam::error& err)
+        {
+            FAIL() << "cannot read the particle state: " << err.message();
+        }
+        ASSERT_EQ(h.size(), 3*nPreset);
+        ASSERT_EQ(level.size(), 3*nPreset);
+        for (Foam::label i = 0; i < h.size(); ++i)
+        {
+            EXPECT_NEAR(h[i], hRefined, 1e-12*hRefined);
+            EXPECT_EQ(level[i], 1);
+        }
+    }
+
+    // The level in the series: the particles' point data of the last
+    // time, from 1 to 1 (VTK writes each array's range in the header)
+    const std::vector<std::string> entries =
+        xmlTags(readText(pvd()), "DataSet");
+    ASSERT_FALSE(entries.empty()) << readText(pvd());
+    const fs::path vtm =
+        pvd().parent_path()/xmlAttribute(entries.back(), "file");
+    std::string levelTag;
+    for (const std::string& block : xmlTags(readText(vtm), "DataSet"))
+    {
+        if (xmlAttribute(block, "name") != "particles") continue;
+        const std::string header =
+            vtkXmlHeader(vtm.parent_path()/xmlAttribute(block, "file"));
+        for (const std::string& array : xmlTags(header, "DataArray"))
+        {
+            if (xmlAttribute(array, "Name") == "level") levelTag = array;
+        }
+    }
+    ASSERT_FALSE(levelTag.empty()) << readText(vtm);
+    EXPECT_EQ(std::stod(xmlAttribute(levelTag, "RangeMin")), 1) << levelTag;
+    EXPECT_EQ(std::stod(xmlAttribute(levelTag, "RangeMax")), 1) << levelTag;
+}
+
+
+TEST_F(Solver, refinedRadiusRatioOutsideThePapersRangeOrWithSPEMStops)
+{
+    for (const std::string& ratio : {"0.7", "0.45"})
+    {
+        SCOPED_TRACE(ratio);
+        schemes_ =
+            "method          multiResolutionSPEM;\n"
+            "conversion\n{\n    refinedRadiusRatio " + ratio + ";\n}\n";
+        const std::string text = runExpectingFatalError();
+        expectInLog
+        (
+            text,
+            {
+                "FATAL IO ERROR", "refinedRadiusRatio", "out of range",
+                "Allowed: [0.5,",
+                "system/spemSchemes"
+            }
+        );
+        EXPECT_FALSE(contains(text, "Starting time loop")) << text;
+    }
+    // One particle per element: the entry would do nothing
+    schemes_ =
+        "method          SPEM;\n"
+        "conversion\n{\n    refinedRadiusRatio 0.55;\n}\n";
     const std::string text = runExpectingFatalError();
     expectInLog
     (
-        text, {"FATAL IO ERROR", "multiResolutionSPEM", "system/spemSchemes"}
+        text,
+        {
+            "FATAL IO ERROR", "refinedRadiusRatio", "multiResolutionSPEM",
+            "system/spemSchemes"
+        }
     );
-    EXPECT_FALSE(contains(text, "Starting time loop")) << text;
 }
 
 
@@ -2320,6 +2443,61 @@ TEST_F(SolverRestart, spemRestartAfterConversionsWithAdjustedStepsIsBitForBit)
         << xError << ", particle positions by " << pError << " relative"
         << std::endl;
     EXPECT_EQ(xError, 0);
+    EXPECT_EQ(pError, 0);
+}
+
+
+TEST_F(SolverRestart, multiResolutionRestartAfterConversionsIsBitForBit)
+{
+    // As spemRestartAfterConversionsWithAdjustedStepsIsBitForBit, with
+    // method multiResolutionSPEM: the state at T holds elements, refined
+    // particles (level 1 in particleLevel) and the interface, and the run
+    // restarted from it writes the same bytes at 2T as the continuous one
+    const std::string T = "0.08", twoT = "0.12";
+    nx_ = 20;
+    ny_ = 40;
+    schemes_ = "method          multiResolutionSPEM;\n";
+    setControl("adjustTimeStep", "yes");
+    setControl("maxCo", "0.5");
+    setControl("deltaT", "1e-4");
+    setControl("writeControl", "adjustableRunTime");
+    setControl("writeInterval", "0.04");
+    rigidBodies_ = floatBody(3);
+    fs::path caseA, caseB;
+    runContinuousAndRestarted
+    (
+        T, twoT,
+        [](const fs::path&)
+        {
+            return std::vector<std::string>{"Restart: read", "fluid particles"};
+        },
+        caseA, caseB
+    );
+    if (HasFailure()) return;
+    EXPECT_TRUE(fs::exists(caseB/T/"spem"/"convertedTriangles"));
+    EXPECT_TRUE(contains(log(), "refinement (eqs. 19-22)"));
+    Foam::labelList level;
+    try
+    {
+        level = readStateField<Foam::labelIOList>(T, "particleLevel", caseB);
+    }
+    catch (const Foam::error& err)
+    {
+        FAIL() << "cannot read the particle levels: " << err.message();
+    }
+    ASSERT_GT(level.size(), 0);
+    EXPECT_EQ(level.size() % 3, 0);
+    for (const Foam::label l : level) EXPECT_EQ(l, 1);
+    EXPECT_EQ(differingStateFiles(caseA, caseB, twoT), 0);
+    EXPECT_TRUE(fs::exists(caseB/twoT/"spem"/"particleLevel"));
+    const double pError = relativeDifference
+    (
+        readState(twoT, "particlePositions", caseA),
+        readState(twoT, "particlePositions", caseB)
+    );
+    std::cout << "multi-resolution restart after conversions ("
+        << level.size() << " refined particles at T): particle positions"
+        << " differ by " << pError << " relative" << std::endl;
     EXPECT_EQ(pError, 0);
 }
 

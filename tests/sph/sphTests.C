@@ -17,7 +17,13 @@ Description
         particles before it;
       - wall particles fill layers and corners outside the mesh;
       - element -> particle conversion conserves mass and momentum and puts
-        the particle at the barycentre (eqs. 17-18).
+        the particle at the barycentre (eqs. 17-18);
+      - particles of two resolutions (a mesh with some elements split into
+        three refined particles, eqs. 19-22, the others one particle each,
+        so that h varies from particle to particle): the internal forces of
+        sphFluid's passes sum to zero, its FPM continuity and the corrected
+        gradient are exact for linear fields, and its stable step is the
+        one of the finest particle.
 
 \*---------------------------------------------------------------------------*/
 
@@ -143,6 +149,54 @@ void correctedGradient
     gradientCorrectionMatrix(type, false, M[0], M[1], M[2], C);
     grad[0] = C[0]*G[0] + C[1]*G[1];
     grad[1] = C[1]*G[0] + C[2]*G[1];
+}
+
+
+//- Particles of two resolutions on [0, 1]^2: the elements of a perturbed
+//  n x n mesh (density 1000) become one particle each, or, with
+//  probability refinedShare, three refined particles of radius 1/sqrt(3)
+//  R_M (eqs. 19-22). The smoothing length (1.3 times the spacing) thus
+//  differs from particle to particle, by the element's area and by 1.7
+//  between the levels.
+particleSet mixedResolutionParticles
+(
+    const label n,
+    const scalar refinedShare,
+    const unsigned seed
+)
+{
+    const triMesh mesh = testMeshes::perturbed
+    (
+        testMeshes::build({{0, 1, 0, 1, n, n, "water"}}), 0.2, 1.0/n, seed
+    );
+    const std::vector<scalar>& x = mesh.points();
+    const std::vector<scalar> v(x.size(), 0);
+    const label nT = mesh.nTriangles();
+    std::vector<scalar> m(nT);
+    std::vector<label> coarse, refined;
+    std::mt19937 gen(seed);
+    std::uniform_real_distribution<scalar> u(0, 1);
+    for (label t = 0; t < nT; ++t)
+    {
+        m[t] = 1000*mesh.triangleArea(t);
+        (u(gen) < refinedShare ? refined : coarse).push_back(t);
+    }
+    particleSet ps;
+    appendParticlesFromElements(x, v, mesh.triangles(), m, coarse, 1.3, ps);
+    appendParticlesFromElements
+    (
+        x, v, mesh.triangles(), m, refined, 1.3, ps, 1/std::sqrt(3.0)
+    );
+    return ps;
+}
+
+
+//- Smallest and largest smoothing length
+void smoothingLengthRange(const particleSet& ps, scalar& hMin, scalar& hMax)
+{
+    const std::vector<scalar>& h = ps.smoothingLength();
+    hMin = *std::min_element(h.begin(), h.end());
+    hMax = *std::max_element(h.begin(), h.end());
 }
 
 
@@ -722,6 +776,168 @@ TEST(ElementToParticle, conservesMassAndMomentumAtTheBarycentre)
     EXPECT_NEAR(mass, mTotal, 1e-13*mTotal);
     EXPECT_NEAR(qx, px, 1e-12);
     EXPECT_NEAR(qy, py, 1e-12);
+}
+
+
+// * * * * * * * * * * * Mixed resolution (eqs. 19-22) * * * * * * * * * * //
+
+TEST(MixedResolution, internalForcesSumToZeroOverARandomMixedSet)
+{
+    // Random velocities and densities, viscous, no walls and no gravity:
+    // sum m_i a_i is the sum of the pair forces, zero if each pair's is
+    // antisymmetric, which with h_i != h_j needs the same h_ij both ways
+    particleSet ps = mixedResolutionParticles(14, 0.5, 21);
+    std::mt19937 gen(8);
+    std::uniform_real_distribution<scalar> u(-1, 1);
+    for (scalar& v : ps.velocities()) v = 0.5*u(gen);
+    for (scalar& rho : ps.density()) rho *= 1 + 0.01*u(gen);
+    scalar hMin, hMax;
+    smoothingLengthRange(ps, hMin, hMax);
+    std::cout << ps.size() << " particles, h from " << hMin << " to " << hMax
+              << std::endl;
+    ASSERT_GT(hMax/hMin, 1.7);
+
+    const scalar lo[2] = {-1, -1}, hi[2] = {2, 2};
+    for (const word form : {"kernel", "symmetrisedCorrection"})
+    {
+        SCOPED_TRACE(form);
+        sphFluid fluid
+        (
+            schemes("momentumGradient " + form + ";"), particleSet(ps),
+            1000, 20, 1e-3, 0, 0, lo, hi
+        );
+        ASSERT_TRUE(fluid.evaluate()) << fluid.failure();
+        const particleSet& q = fluid.particles();
+        const std::vector<scalar>& a = fluid.accelerations();
+        long double fx = 0, fy = 0, scale = 0;
+        for (label i = 0; i < q.size(); ++i)
+        {
+            fx += q.mass()[i]*a[2*i];
+            fy += q.mass()[i]*a[2*i + 1];
+            scale += q.mass()[i]*std::hypot(a[2*i], a[2*i + 1]);
+        }
+        std::cout << form << ": |sum m a| " << double(std::hypot(fx, fy))
+                  << " N of sum m |a| " << double(scale) << " N" << std::endl;
+        ASSERT_GT(scale, 0);
+        EXPECT_LT(double(std::hypot(fx, fy)), 1e-13*double(scale));
+    }
+}
+
+
+TEST(MixedResolution, correctedGradientIsExactForLinearFieldsOnAMixedSet)
+{
+    // The test's own sums with h_ij (correctedGradient above) and
+    // src/SPEM/sph/gradientCorrection's matrix, at the particles whose
+    // support lies inside the set
+    const particleSet ps = mixedResolutionParticles(14, 0.5, 5);
+    scalar hMin, hMax;
+    smoothingLengthRange(ps, hMin, hMax);
+    const scalar a = 3, b = -2, reach = 2*hMax;
+    auto fx = [&](scalar x, scalar) { return a*x; };
+    auto fy = [&](scalar, scalar y) { return b*y; };
+    auto fxy = [&](scalar x, scalar y) { return a*x + b*y; };
+    scalar worstNone = 0;
+    label nChecked = 0, nRefined = 0;
+    for (label i = 0; i < ps.size(); ++i)
+    {
+        const scalar* p = &ps.positions()[2*i];
+        if (std::min({p[0], p[1], 1 - p[0], 1 - p[1]}) < reach) continue;
+        ++nChecked;
+        nRefined += ps.level()[i];
+        scalar g[2];
+        correctedGradient(ps, i, gradientCorrectionType::decoupledFPM, fx, g);
+        EXPECT_NEAR(g[0], a, 1e-10);
+        correctedGradient(ps, i, gradientCorrectionType::decoupledFPM, fy, g);
+        EXPECT_NEAR(g[1], b, 1e-10);
+        correctedGradient(ps, i, gradientCorrectionType::FPM, fxy, g);
+        EXPECT_NEAR(g[0], a, 1e-10);
+        EXPECT_NEAR(g[1], b, 1e-10);
+        correctedGradient(ps, i, gradientCorrectionType::none, fx, g);
+        worstNone = std::max(worstNone, std::abs(g[0] - a)/a);
+    }
+    ASSERT_GT(nChecked, 100);
+    ASSERT_GT(nRefined, 50);
+    std::cout << nChecked << " particles (" << nRefined << " refined):"
+              << " worst uncorrected error " << worstNone << std::endl;
+    EXPECT_GT(worstNone, 1e-2);
+}
+
+
+TEST(MixedResolution, fpmContinuityIsExactForLinearVelocityOnAMixedSet)
+{
+    // sphFluid's own density pass (moments and continuity with h_ij):
+    // drho/dt = -rho div v for v = (a x + b y, c x + d y)
+    particleSet ps = mixedResolutionParticles(14, 0.5, 9);
+    scalar hMin, hMax;
+    smoothingLengthRange(ps, hMin, hMax);
+    const scalar a = 0.3, b = 0.2, c = -0.1, d = 0.5;
+    for (label i = 0; i < ps.size(); ++i)
+    {
+        const scalar* p = &ps.positions()[2*i];
+        ps.velocities()[2*i] = a*p[0] + b*p[1];
+        ps.velocities()[2*i + 1] = c*p[0] + d*p[1];
+    }
+    const scalar lo[2] = {-1, -1}, hi[2] = {2, 2};
+    for (const word corr : {"FPM", "none"})
+    {
+        SCOPED_TRACE(corr);
+        sphFluid fluid
+        (
+            schemes
+            (
+                "gradientCorrection " + corr + "; densityDiffusion 0;"
+                " shifting 0;"
+            ),
+            particleSet(ps), 1000, 10, 0, 0, 0, lo, hi
+        );
+        ASSERT_TRUE(fluid.evaluate());
+        const scalar dt = 1e-9;
+        fluid.advance(dt);
+        ASSERT_TRUE(fluid.evaluate());
+        scalar worst = 0;
+        label nChecked = 0;
+        const particleSet& q = fluid.particles();
+        for (label i = 0; i < q.size(); ++i)
+        {
+            const scalar* p = &q.positions()[2*i];
+            if (std::min({p[0], p[1], 1 - p[0], 1 - p[1]}) < 2*hMax) continue;
+            ++nChecked;
+            const scalar rate = (q.density()[i] - 1000)/dt;
+            worst = std::max(worst, std::abs(rate/(-1000*(a + d)) - 1));
+        }
+        ASSERT_GT(nChecked, 100);
+        std::cout << corr << ": worst relative error of drho/dt " << worst
+                  << std::endl;
+        if (corr == "FPM")
+        {
+            // O(dt) from the positions moved by the step
+            EXPECT_LT(worst, 1e-5);
+        }
+        else
+        {
+            EXPECT_GT(worst, 1e-3);
+        }
+    }
+}
+
+
+TEST(MixedResolution, stableStepIsTheFinestParticles)
+{
+    // At rest at rho0 without gravity or viscosity: no force, and the
+    // step is the acoustic one, acousticFactor h/c, of the smallest h
+    particleSet ps = mixedResolutionParticles(10, 0.5, 3);
+    for (scalar& rho : ps.density()) rho = 1000;
+    scalar hMin, hMax;
+    smoothingLengthRange(ps, hMin, hMax);
+    const scalar c = 20, lo[2] = {-1, -1}, hi[2] = {2, 2};
+    sphFluid fluid(schemes(""), particleSet(ps), 1000, c, 0, 0, 0, lo, hi);
+    ASSERT_TRUE(fluid.evaluate());
+    std::cout << "h from " << hMin << " to " << hMax << ": stable step "
+              << fluid.stableDeltaT() << " s" << std::endl;
+    EXPECT_NEAR
+    (
+        fluid.stableDeltaT(), sphFluid::acousticFactor*hMin/c, 1e-12*hMin/c
+    );
 }
 
 

@@ -14,11 +14,14 @@ Foam::label Foam::appendParticlesFromElements
     const std::vector<scalar>& elementMass,
     const std::vector<label>& elements,
     const scalar smoothingLengthRatio,
-    particleSet& particles
+    particleSet& particles,
+    const scalar refinedRadiusRatio,
+    refinementChange* change
 )
 {
     const label first = particles.size();
-    particles.reserve(first + label(elements.size()));
+    const bool refine = refinedRadiusRatio > 0;
+    particles.reserve(first + (refine ? 3 : 1)*label(elements.size()));
 
     for (const label e : elements)
     {
@@ -42,11 +45,44 @@ Foam::label Foam::appendParticlesFromElements
         const scalar uM = (v[2*n[0]] + v[2*n[1]] + v[2*n[2]])/3;
         const scalar vM = (v[2*n[0] + 1] + v[2*n[1] + 1] + v[2*n[2] + 1])/3;
 
-        // Eq. (18): the particle carries the element's mass and density
-        particles.append
-        (
-            xM, yM, uM, vM, m/area, 0, m, smoothingLengthRatio*std::sqrt(area)
-        );
+        if (!refine)
+        {
+            // Eq. (18): the particle carries the element's mass and density
+            particles.append
+            (
+                xM, yM, uM, vM, m/area, 0, m,
+                smoothingLengthRatio*std::sqrt(area)
+            );
+            continue;
+        }
+
+        // Eqs. (19-22): three particles halfway between M and the nodes,
+        // each a third of the mass at the element's density, with the
+        // velocity of its node; radius refinedRadiusRatio R_M, R_M =
+        // sqrt(A_e)/2, hence spacing refinedRadiusRatio sqrt(A_e)
+        const scalar hRefined =
+            smoothingLengthRatio*refinedRadiusRatio*std::sqrt(area);
+        scalar dL = 0, dE = 0;
+        for (label k = 0; k < 3; ++k)
+        {
+            const scalar* xn = &x[2*n[k]];
+            const scalar* vn = &v[2*n[k]];
+            const scalar xi = 0.5*(xn[0] + xM), yi = 0.5*(xn[1] + yM);
+            particles.append
+            (
+                xi, yi, vn[0], vn[1], m/area, 0, m/3, hRefined,
+                particleSet::kind::fluid, 1
+            );
+            // About x_M, where M's own angular momentum is zero
+            dL += m/3*((xi - xM)*vn[1] - (yi - yM)*vn[0]);
+            dE += m/6*(sqr(vn[0] - uM) + sqr(vn[1] - vM));
+        }
+        if (change)
+        {
+            change->angularMomentum += dL;
+            change->kineticEnergy += dE;
+            change->unsplitKineticEnergy += 0.5*m*(uM*uM + vM*vM);
+        }
     }
     return first;
 }
@@ -58,7 +94,9 @@ void Foam::convertElements
     const std::vector<label>& triangles,
     const scalar smoothingLengthRatio,
     elementModel& elements,
-    particleSet& particles
+    particleSet& particles,
+    const scalar refinedRadiusRatio,
+    refinementChange* change
 )
 {
     std::vector<scalar> mass(mesh.nTriangles(), 0);
@@ -78,7 +116,8 @@ void Foam::convertElements
     appendParticlesFromElements
     (
         elements.positions(), elements.velocities(), mesh.triangles(), mass,
-        triangles, smoothingLengthRatio, particles
+        triangles, smoothingLengthRatio, particles, refinedRadiusRatio,
+        change
     );
     elements.removeTriangles(mesh, triangles);
 }

@@ -31,7 +31,8 @@ Foam::groupConversion::groupConversion
         conversionDict,
         {
             "criterion", "minInteriorAngle", "maxStretchRatio",
-            "groupSizeFactor", "presetParticleRegions"
+            "groupSizeFactor", "presetParticleRegions",
+            "refinedRadiusRatio"    // multiResolutionSPEM's
         }
     );
     if (!(groupSizeFactor_ > 1 && groupSizeFactor_ <= 10))

@@ -33,15 +33,28 @@ Foam::elementParticleCoupling::ghostSearchTypeNames
 Foam::elementParticleCoupling::elementParticleCoupling
 (
     const dictionary& schemesDict,
-    const scalar smoothingLengthRatio
+    const scalar smoothingLengthRatio,
+    const scalar refinedRadiusRatio
 )
 :
-    interfaceForce_(interfaceForceType::traction),
-    ghostSearch_(ghostSearchType::particleSupport),
+    // Split ghosts: found by the pair reach, exchanged equal and opposite
+    interfaceForce_
+    (
+        refinedRadiusRatio > 0
+      ? interfaceForceType::balancedTraction
+      : interfaceForceType::traction
+    ),
+    ghostSearch_
+    (
+        refinedRadiusRatio > 0
+      ? ghostSearchType::pairReach
+      : ghostSearchType::particleSupport
+    ),
     imbalance_{0, 0},
     velocityCorrection_(0.1),
     interfaceSuction_(true),
-    smoothingLengthRatio_(smoothingLengthRatio)
+    smoothingLengthRatio_(smoothingLengthRatio),
+    refinedRadiusRatio_(refinedRadiusRatio)
 {
     const dictionary* d = schemesDict.findDict("coupling");
     if (d)
@@ -290,26 +303,60 @@ void Foam::elementParticleCoupling::setGhosts
             const scalar cy = (x[2*n[0] + 1] + x[2*n[1] + 1] + x[2*n[2] + 1])/3;
             // Within the pair reach kappa h_ij of a fluid particle, or
             // within its support kappa h_j
-            const scalar hGhost = smoothingLengthRatio_*std::sqrt(area[el]);
-            bool reached = false;
-            const auto fluidInReach =
-                [&](const label j, const scalar, const scalar, const scalar)
+            const auto reachesFluid =
+                [&](const scalar gx, const scalar gy, const scalar hGhost)
                 {
-                    reached =
-                        reached || ps.kinds()[j] == particleSet::kind::fluid;
+                    bool reached = false;
+                    const auto fluidInReach =
+                        [&](const label j, const scalar, const scalar, const scalar)
+                        {
+                            reached =
+                                reached
+                             || ps.kinds()[j] == particleSet::kind::fluid;
+                        };
+                    if (ghostSearch_ == ghostSearchType::pairReach)
+                    {
+                        cells_.forEachParticleInReach
+                        (
+                            ps, gx, gy, hGhost, kappa, fluidInReach
+                        );
+                    }
+                    else
+                    {
+                        cells_.forEachParticleNear
+                        (
+                            ps, gx, gy, kappa, fluidInReach
+                        );
+                    }
+                    return reached;
                 };
-            if (ghostSearch_ == ghostSearchType::pairReach)
+
+            if (refinedRadiusRatio_ > 0)
             {
-                cells_.forEachParticleInReach
-                (
-                    ps, cx, cy, hGhost, kappa, fluidInReach
-                );
+                // Split ghosts: the element's refined particles (eqs. 19-22,
+                // as appendParticlesFromElements makes them)
+                const scalar hSplit =
+                    smoothingLengthRatio_*refinedRadiusRatio_
+                   *std::sqrt(area[el]);
+                for (label k = 0; k < 3; ++k)
+                {
+                    const scalar gx = 0.5*(x[2*n[k]] + cx);
+                    const scalar gy = 0.5*(x[2*n[k] + 1] + cy);
+                    if (!reachesFluid(gx, gy, hSplit)) continue;
+                    ghostElement_.push_back(el);
+                    ghostX_.push_back(gx);
+                    ghostX_.push_back(gy);
+                    ghostV_.push_back(v[2*n[k]]);
+                    ghostV_.push_back(v[2*n[k] + 1]);
+                    ghostRho_.push_back(mass[el]/area[el]);
+                    ghostM_.push_back(mass[el]/3);
+                    ghostH_.push_back(hSplit);
+                }
+                continue;
             }
-            else
-            {
-                cells_.forEachParticleNear(ps, cx, cy, kappa, fluidInReach);
-            }
-            if (!reached) continue;
+
+            const scalar hGhost = smoothingLengthRatio_*std::sqrt(area[el]);
+            if (!reachesFluid(cx, cy, hGhost)) continue;
 
             // Eq. (17) with equal nodal shares, eq. (18)
             ghostElement_.push_back(el);

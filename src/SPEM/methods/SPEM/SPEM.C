@@ -97,7 +97,8 @@ void Foam::spemMethods::SPEM::createParticleHalf
         new elementParticleCoupling
         (
             case_.schemes,
-            sphFluid::controls::read(case_.schemes).smoothingLengthRatio
+            sphFluid::controls::read(case_.schemes).smoothingLengthRatio,
+            refinedRadiusRatio_
         )
     );
     collectCouplings();
@@ -380,10 +381,30 @@ Foam::spemMethods::SPEM::SPEM
     PtrList<spemMaterial>& materials
 )
 :
+    SPEM(c, materials, 0)
+{}
+
+
+Foam::spemMethods::SPEM::SPEM
+(
+    const spemCase& c,
+    PtrList<spemMaterial>& materials,
+    const scalar refinedRadiusRatio
+)
+:
     spemMethod(c),
     bodyReach_(0),
     bodyContact_(0)
 {
+    refinedRadiusRatio_ = refinedRadiusRatio;
+    const dictionary& conversionDict = c.schemes.subOrEmptyDict("conversion");
+    if (refinedRadiusRatio_ == 0 && conversionDict.found("refinedRadiusRatio"))
+    {
+        FatalIOErrorInFunction(conversionDict)
+            << "conversion/refinedRadiusRatio is an entry of method"
+            << " multiResolutionSPEM: method " << c.schemes.get<word>("method")
+            << " makes one particle per element" << exit(FatalIOError);
+    }
     // Fluid elements fitted to the rigid bodies: before anything takes
     // masses or geometry from the mesh
     bodyElementCoupling::preparedMesh bodyMesh;
@@ -427,7 +448,8 @@ Foam::spemMethods::SPEM::SPEM
         // writes later
         elementParticleCoupling
         (
-            c.schemes, sphFluid::controls::read(c.schemes).smoothingLengthRatio
+            c.schemes, sphFluid::controls::read(c.schemes).smoothingLengthRatio,
+            refinedRadiusRatio_
         );
     }
     if (bodyElements_)

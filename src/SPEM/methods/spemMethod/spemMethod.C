@@ -271,13 +271,27 @@ std::vector<bool> Foam::spemMethod::surveyFluidElements(scalar& maxArea)
 }
 
 
+Foam::scalar Foam::spemMethod::convertedSpacing() const
+{
+    return
+        refinedRadiusRatio_ > 0
+      ? refinedRadiusRatio_*fluidSpacing_
+      : fluidSpacing_;
+}
+
+
 void Foam::spemMethod::convert(const std::vector<label>& triangles)
 {
     const scalar ratio =
         sphFluid::controls::read(case_.schemes).smoothingLengthRatio;
 
     particleSet ps;
-    convertElements(case_.mesh, triangles, ratio, *elements_, ps);
+    refinementChange change;
+    convertElements
+    (
+        case_.mesh, triangles, ratio, *elements_, ps, refinedRadiusRatio_,
+        &change
+    );
     convertedTriangles_.insert
     (
         convertedTriangles_.end(), triangles.begin(), triangles.end()
@@ -287,7 +301,7 @@ void Foam::spemMethod::convert(const std::vector<label>& triangles)
         createParticleHalf
         (
             particleSet(), std::vector<scalar>(), *elementFluid_,
-            fluidSpacing_
+            convertedSpacing()
         );
     }
     particles_->appendFluid(ps);
@@ -303,6 +317,17 @@ void Foam::spemMethod::convert(const std::vector<label>& triangles)
             << " interface segments";
     }
     Info<< nl;
+    if (refinedRadiusRatio_ > 0)
+    {
+        // A diagnostic: eq. (21) gives each refined particle its node's
+        // velocity, which conserves linear momentum but not these two
+        Info<< "    refinement (eqs. 19-22): " << ps.size()
+            << " refined particles; eq. (21) changed, against one particle"
+            << " per element, the angular momentum by "
+            << change.angularMomentum << " kg m^2/s and the kinetic energy"
+            << " by " << change.kineticEnergy << " J (of "
+            << change.unsplitKineticEnergy << " J)" << nl;
+    }
 }
 
 
@@ -325,7 +350,7 @@ bool Foam::spemMethod::restartConversions()
     }
     createParticleHalf
     (
-        std::move(ps), std::move(rhoOld), *elementFluid_, fluidSpacing_
+        std::move(ps), std::move(rhoOld), *elementFluid_, convertedSpacing()
     );
     callHooks(&spemCoupling::afterConversion);
     return true;
@@ -533,6 +558,7 @@ Foam::spemMethod::spemMethod(const spemCase& c)
     case_(c),
     elementFluid_(nullptr),
     fluidSpacing_(0),
+    refinedRadiusRatio_(0),
     lastDeltaT_(0),
     particlesAdvanced_(false),
     nOutsideToWarn_(0),

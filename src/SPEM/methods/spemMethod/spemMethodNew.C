@@ -10,16 +10,6 @@ Foam::autoPtr<Foam::spemMethod> Foam::spemMethod::New
 {
     const word methodName(c.schemes.get<word>("method"));
 
-    // The paper's multi-resolution method derives from SPEM (next version)
-    const word notYet("multiResolutionSPEM");
-    if (methodName == notYet)
-    {
-        FatalIOErrorInFunction(c.schemes)
-            << "method " << methodName
-            << " is not available in this version; use SPEM or SPH"
-            << exit(FatalIOError);
-    }
-
     if (!dictionaryConstructorTablePtr_)
     {
         FatalErrorInFunction
@@ -29,8 +19,7 @@ Foam::autoPtr<Foam::spemMethod> Foam::spemMethod::New
     auto cstrIter = dictionaryConstructorTablePtr_->cfind(methodName);
     if (!cstrIter.found())
     {
-        wordList valid(dictionaryConstructorTablePtr_->sortedToc());
-        valid.append(notYet);
+        const wordList valid(dictionaryConstructorTablePtr_->sortedToc());
         FatalIOErrorInFunction(c.schemes)
             << "Unknown method " << methodName << nl << nl
             << "Valid methods :" << nl << valid

@@ -251,6 +251,16 @@ void Foam::restartState::writeParticles(const sphFluid& particles) const
     {
         writeExact(*f);
     }
+    // The level only where it is not 0 everywhere: a state of one
+    // resolution stays as it was without the multi-resolution SPEM
+    labelIOList level(IOobject(xIO, "particleLevel"), nFluid);
+    bool refined = false;
+    forAll(level, k)
+    {
+        level[k] = ps.level()[order[k]];
+        refined = refined || level[k] != 0;
+    }
+    if (refined) writeExact(level);
 
     // The storage order the next evaluation starts from: fluid particle k
     // of the files above is k, wall particle r (by id) is nFluid + r
@@ -559,12 +569,36 @@ bool Foam::restartState::readParticles
         );
     }
 
+    labelList level(n, 0);
+    const IOobject levelIO(file("particleLevel"));
+    if (listed<labelIOList>(levelIO))
+    {
+        level = labelIOList(levelIO);
+        if (level.size() != n)
+        {
+            bad
+            (
+                levelIO,
+                "inconsistent: " + std::to_string(level.size())
+              + " levels for " + std::to_string(n) + " positions"
+            );
+        }
+        for (const label l : level)
+        {
+            if (l < 0 || l > 255)
+            {
+                bad(levelIO, "a level outside [0, 255]: " + std::to_string(l));
+            }
+        }
+    }
+
     particles.reserve(n);
     forAll(xf, i)
     {
         particles.append
         (
-            xf[i].x(), xf[i].y(), vf[i].x(), vf[i].y(), rho[i], 0, m[i], h[i]
+            xf[i].x(), xf[i].y(), vf[i].x(), vf[i].y(), rho[i], 0, m[i], h[i],
+            particleSet::kind::fluid, static_cast<unsigned char>(level[i])
         );
     }
     // Densities at the start of the step (volumes of the next evaluation)
