@@ -30,7 +30,7 @@ Description
     Usage
         particleStepBenchmark [Google Benchmark options]
             fullStep/fluid:N/threads:T   advance(dt) + evaluate()
-        for N in {500, 1000, 2000, 4000, 1e4, 1e5, 1e6} fluid particles
+        for N in {100, 250, 500, 1000, 2000, 4000, 1e4, 1e5, 1e6} fluid particles
         and T OpenMP threads in {1, 2} (the small sizes place
         minParallelParticles, with a build that splits every pass:
         cmake -DSPEM_MIN_PARALLEL_PARTICLES=0). Counters: particleSteps (fluid particle-steps per second),
@@ -323,7 +323,7 @@ int registerBenchmarks()
     // The small sizes place minParallelParticles: from which size two
     // threads beat one (a build with -DSPEM_MIN_PARALLEL_PARTICLES=0
     // splits every pass)
-    for (const int64_t n : {500, 1000, 2000, 4000, 10000, 100000, 1000000})
+    for (const int64_t n : {100, 250, 500, 1000, 2000, 4000, 10000, 100000, 1000000})
     {
         for (const int64_t t : {1, 2})
         {

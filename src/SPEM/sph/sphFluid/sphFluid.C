@@ -17,6 +17,13 @@ namespace
     using Foam::minParallelLoop;
     using Foam::minParallelParticles;
 
+    //- Particles per chunk of the neighbour passes, dealt to the threads in
+    //  turn: the particles are sorted by cell, so halves of the range are
+    //  regions of the flow, and a region near the free surface (fewer
+    //  neighbours) left one thread idle; a fixed deal keeps the result
+    //  the same from run to run
+    constexpr int passChunk = 64;
+
     using Foam::scalar;
     using Foam::label;
     using Foam::particleSet;
@@ -637,7 +644,7 @@ void Foam::sphFluid::densityPass(const Kernel&)
     // Performance critical: every fluid particle, every step.
     const label nFluid = label(fluidIndex_.size());
     const label* __restrict__ fluid = fluidIndex_.data();
-    #pragma omp parallel for schedule(static) if(nFluid > minParallelParticles)
+    #pragma omp parallel for schedule(static, passChunk) if(nFluid > minParallelParticles)
     for (label f = 0; f < nFluid; ++f)
     {
         const label i = fluid[f];
@@ -737,7 +744,7 @@ void Foam::sphFluid::wallPass(const Kernel&)
 
     const label nWalls = label(wallIndex_.size());
     const label* __restrict__ walls = wallIndex_.data();
-    #pragma omp parallel for schedule(static) if(nWalls > minParallelParticles)
+    #pragma omp parallel for schedule(static, passChunk) if(nWalls > minParallelParticles)
     for (label k = 0; k < nWalls; ++k)
     {
         const label w = walls[k];
@@ -826,7 +833,7 @@ void Foam::sphFluid::momentumPass(const Kernel&)
     std::fill(ghostAcceleration_.begin(), ghostAcceleration_.end(), 0);
     const label nFluid = label(fluidIndex_.size());
     const label* __restrict__ fluid = fluidIndex_.data();
-    #pragma omp parallel for schedule(static) reduction(+: fwx, fwy, fgx, fgy, fsx, fsy) reduction(min: dtAcoustic, dtForce, dtViscous) if(nFluid > minParallelParticles)
+    #pragma omp parallel for schedule(static, passChunk) reduction(+: fwx, fwy, fgx, fgy, fsx, fsy) reduction(min: dtAcoustic, dtForce, dtViscous) if(nFluid > minParallelParticles)
     for (label f = 0; f < nFluid; ++f)
     {
         const label i = fluid[f];
@@ -928,7 +935,7 @@ void Foam::sphFluid::reactionPass
         k == particleSet::kind::ghost ? ghostIndex_ : structureIndex_;
     const label nReacting = label(index.size());
     const label* __restrict__ reacting = index.data();
-    #pragma omp parallel for schedule(static) if(nReacting > minParallelParticles)
+    #pragma omp parallel for schedule(static, passChunk) if(nReacting > minParallelParticles)
     for (label r = 0; r < nReacting; ++r)
     {
         const label w = reacting[r];
