@@ -1207,7 +1207,7 @@ TEST_F(Solver, multiResolutionSPEMSplitsEachPresetElementIntoThreeRefinedParticl
 
 TEST_F(Solver, refinedRadiusRatioOutsideThePapersRangeOrWithSPEMStops)
 {
-    for (const std::string& ratio : {"0.7", "0.45"})
+    for (const std::string ratio : {"0.7", "0.45"})
     {
         SCOPED_TRACE(ratio);
         schemes_ =
