@@ -1,4 +1,5 @@
 #include "elementParticleCoupling.H"
+#include "parallelLoop.H"
 #include "elementModel.H"
 #include "sphFluid.H"
 #include "checkKeywords.H"
@@ -288,6 +289,54 @@ void Foam::elementParticleCoupling::setGhosts
     ghostM_.clear();
     ghostH_.clear();
 
+    // Within the pair reach kappa h_ij of a fluid particle, or within its
+    // support kappa h_j: a search that stops at the first fluid particle
+    const auto reachesFluid =
+        [&](const scalar gx, const scalar gy, const scalar hGhost)
+        {
+            const auto fluid = [&ps](const label j)
+            {
+                return ps.kinds()[j] == particleSet::kind::fluid;
+            };
+            if (ghostSearch_ == ghostSearchType::pairReach)
+            {
+                return cells_.anyParticleInReach(ps, gx, gy, hGhost, kappa, fluid);
+            }
+            return cells_.anyParticleNear(ps, gx, gy, kappa, fluid);
+        };
+    // Split ghosts: the element's refined particles (eqs. 19-22, as
+    // appendParticlesFromElements makes them); else one at the centroid
+    const bool split = refinedRadiusRatio_ > 0;
+    const label perElement = split ? 3 : 1;
+
+    // The box of the fluid particles: a ghost farther from it than its
+    // largest reach, kappa max(h_ghost, h_max), reaches none (most of the
+    // elements, which need no search)
+    scalar box[4] = {GREAT, GREAT, -GREAT, -GREAT};
+    scalar hFluid = 0;
+    {
+        const scalar* xp = ps.positions().data();
+        const scalar* hp = ps.smoothingLength().data();
+        const particleSet::kind* kind = ps.kinds().data();
+        for (label j = 0; j < ps.size(); ++j)
+        {
+            if (kind[j] != particleSet::kind::fluid) continue;
+            box[0] = min(box[0], xp[2*j]);
+            box[1] = min(box[1], xp[2*j + 1]);
+            box[2] = max(box[2], xp[2*j]);
+            box[3] = max(box[3], xp[2*j + 1]);
+            hFluid = max(hFluid, hp[j]);
+        }
+    }
+    const auto outOfReach =
+        [&box, hFluid, kappa](const scalar gx, const scalar gy, const scalar hg)
+        {
+            const scalar d = kappa*max(hg, hFluid);
+            return
+                gx < box[0] - d || gy < box[1] - d
+             || gx > box[2] + d || gy > box[3] + d;
+        };
+
     for (label r = 0; r < elements.regions().size(); ++r)
     {
         if (!elements.hasMaterial(r) || !elements.material(r).isFluid())
@@ -296,45 +345,21 @@ void Foam::elementParticleCoupling::setGhosts
         }
         const label begin = elements.regions()[r].elemBegin;
         const label end = elements.regions()[r].elemEnd;
+
+        // Which of the elements' ghosts reach a fluid particle: a search
+        // per element, as costly as a particle's, on every thread; then the
+        // ghosts in element order, as one thread made them
+        ghostReaches_.assign(perElement*(end - begin), 0);
+        unsigned char* reaches = ghostReaches_.data();
+        #pragma omp parallel for schedule(static) if(end - begin > minParallelParticles)
         for (label el = begin; el < end; ++el)
         {
             const label* n = &nodes[3*el];
             const scalar cx = (x[2*n[0]] + x[2*n[1]] + x[2*n[2]])/3;
             const scalar cy = (x[2*n[0] + 1] + x[2*n[1] + 1] + x[2*n[2] + 1])/3;
-            // Within the pair reach kappa h_ij of a fluid particle, or
-            // within its support kappa h_j
-            const auto reachesFluid =
-                [&](const scalar gx, const scalar gy, const scalar hGhost)
-                {
-                    bool reached = false;
-                    const auto fluidInReach =
-                        [&](const label j, const scalar, const scalar, const scalar)
-                        {
-                            reached =
-                                reached
-                             || ps.kinds()[j] == particleSet::kind::fluid;
-                        };
-                    if (ghostSearch_ == ghostSearchType::pairReach)
-                    {
-                        cells_.forEachParticleInReach
-                        (
-                            ps, gx, gy, hGhost, kappa, fluidInReach
-                        );
-                    }
-                    else
-                    {
-                        cells_.forEachParticleNear
-                        (
-                            ps, gx, gy, kappa, fluidInReach
-                        );
-                    }
-                    return reached;
-                };
-
-            if (refinedRadiusRatio_ > 0)
+            unsigned char* reached = reaches + perElement*(el - begin);
+            if (split)
             {
-                // Split ghosts: the element's refined particles (eqs. 19-22,
-                // as appendParticlesFromElements makes them)
                 const scalar hSplit =
                     smoothingLengthRatio_*refinedRadiusRatio_
                    *std::sqrt(area[el]);
@@ -342,10 +367,41 @@ void Foam::elementParticleCoupling::setGhosts
                 {
                     const scalar gx = 0.5*(x[2*n[k]] + cx);
                     const scalar gy = 0.5*(x[2*n[k] + 1] + cy);
-                    if (!reachesFluid(gx, gy, hSplit)) continue;
+                    reached[k] =
+                        !outOfReach(gx, gy, hSplit)
+                     && reachesFluid(gx, gy, hSplit);
+                }
+            }
+            else
+            {
+                const scalar hGhost = smoothingLengthRatio_*std::sqrt(area[el]);
+                reached[0] =
+                    !outOfReach(cx, cy, hGhost)
+                 && reachesFluid(cx, cy, hGhost);
+            }
+        }
+
+        for (label el = begin; el < end; ++el)
+        {
+            const unsigned char* reached = reaches + perElement*(el - begin);
+            bool any = false;
+            for (label k = 0; k < perElement; ++k) any = any || reached[k];
+            if (!any) continue;
+
+            const label* n = &nodes[3*el];
+            const scalar cx = (x[2*n[0]] + x[2*n[1]] + x[2*n[2]])/3;
+            const scalar cy = (x[2*n[0] + 1] + x[2*n[1] + 1] + x[2*n[2] + 1])/3;
+            if (split)
+            {
+                const scalar hSplit =
+                    smoothingLengthRatio_*refinedRadiusRatio_
+                   *std::sqrt(area[el]);
+                for (label k = 0; k < 3; ++k)
+                {
+                    if (!reached[k]) continue;
                     ghostElement_.push_back(el);
-                    ghostX_.push_back(gx);
-                    ghostX_.push_back(gy);
+                    ghostX_.push_back(0.5*(x[2*n[k]] + cx));
+                    ghostX_.push_back(0.5*(x[2*n[k] + 1] + cy));
                     ghostV_.push_back(v[2*n[k]]);
                     ghostV_.push_back(v[2*n[k] + 1]);
                     ghostRho_.push_back(mass[el]/area[el]);
@@ -355,9 +411,6 @@ void Foam::elementParticleCoupling::setGhosts
                 continue;
             }
 
-            const scalar hGhost = smoothingLengthRatio_*std::sqrt(area[el]);
-            if (!reachesFluid(cx, cy, hGhost)) continue;
-
             // Eq. (17) with equal nodal shares, eq. (18)
             ghostElement_.push_back(el);
             ghostX_.push_back(cx);
@@ -366,7 +419,7 @@ void Foam::elementParticleCoupling::setGhosts
             ghostV_.push_back((v[2*n[0] + 1] + v[2*n[1] + 1] + v[2*n[2] + 1])/3);
             ghostRho_.push_back(mass[el]/area[el]);
             ghostM_.push_back(mass[el]);
-            ghostH_.push_back(hGhost);
+            ghostH_.push_back(smoothingLengthRatio_*std::sqrt(area[el]));
         }
     }
 
