@@ -3217,7 +3217,7 @@ TEST_F(Solver, logBreaksTheCostDownAndPartsTheSceneLacksCostNothing)
     (
         const char* name
       : {"elements", "particles", "search", "couplings", "conversion",
-         "bodies", "output", "other"}
+         "bodies", "output", "functions", "other"}
     )
     {
         ASSERT_EQ(parts.count(name), 1u) << name << '\n' << run[0];
@@ -3262,7 +3262,7 @@ TEST_F(Solver, costBreakdownOfAnSPEMPlateRunWithoutConversionHasNoConversion)
     ASSERT_EQ(run.size(), 1u) << text;
     expectSharesAddUp(run[0]);
     const auto parts = costParts(run[0]);
-    ASSERT_EQ(parts.size(), 8u) << run[0];
+    ASSERT_EQ(parts.size(), 9u) << run[0];
     EXPECT_EQ(parts.at("conversion").second, -1) << run[0];
     EXPECT_EQ(parts.at("bodies").second, -1) << run[0];
     for (const char* some : {"elements", "particles", "couplings"})

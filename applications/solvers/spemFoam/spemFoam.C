@@ -145,7 +145,13 @@ int main(int argc, char *argv[])
     Info<< "Starting time loop" << nl << endl;
     model.cost().startLoop();
 
-    while (runTime.run())
+    // Time::run() executes the function objects
+    const auto run = [&runTime, &model]()
+    {
+        const costBreakdown::scope timed(model.cost(), costBreakdown::functions);
+        return runTime.run();
+    };
+    while (run())
     {
         timeStep->setDeltaT(model.stableDeltaT());
         // The description is made only to stop: nothing is allocated in

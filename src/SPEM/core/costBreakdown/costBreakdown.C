@@ -13,7 +13,8 @@ const char* const Foam::costBreakdown::names_[nParts] =
     "couplings",
     "conversion",
     "bodies",
-    "output"
+    "output",
+    "functions"
 };
 
 
