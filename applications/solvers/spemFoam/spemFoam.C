@@ -187,7 +187,7 @@ int main(int argc, char *argv[])
                 << nl << endl;
         }
         {
-            // Time's own record and function objects
+            // Time's own record (uniform/time) at a write time
             const costBreakdown::scope timed
             (
                 model.cost(), costBreakdown::output

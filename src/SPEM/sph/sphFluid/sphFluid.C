@@ -1,6 +1,4 @@
 #include "sphFluid.H"
-
-#include <optional>
 #include "Switch.H"
 #include "dictionary.H"
 #include "checkKeywords.H"
