@@ -294,10 +294,11 @@ void Foam::elementParticleCoupling::setGhosts
     const auto reachesFluid =
         [&](const scalar gx, const scalar gy, const scalar hGhost)
         {
-            const auto fluid = [&ps](const label j)
-            {
-                return ps.kinds()[j] == particleSet::kind::fluid;
-            };
+            const auto fluid =
+                [&ps](const label j, const scalar, const scalar, const scalar)
+                {
+                    return ps.kinds()[j] == particleSet::kind::fluid;
+                };
             if (ghostSearch_ == ghostSearchType::pairReach)
             {
                 return cells_.anyParticleInReach(ps, gx, gy, hGhost, kappa, fluid);
