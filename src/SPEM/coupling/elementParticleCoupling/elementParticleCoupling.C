@@ -310,6 +310,29 @@ void Foam::elementParticleCoupling::setGhosts
     const bool split = refinedRadiusRatio_ > 0;
     const label perElement = split ? 3 : 1;
 
+    // Position and smoothing length of ghost k of element el
+    const auto candidate =
+        [&](const label el, const label k, scalar& gx, scalar& gy, scalar& hg)
+        {
+            const label* n = &nodes[3*el];
+            const scalar cx = (x[2*n[0]] + x[2*n[1]] + x[2*n[2]])/3;
+            const scalar cy = (x[2*n[0] + 1] + x[2*n[1] + 1] + x[2*n[2] + 1])/3;
+            if (split)
+            {
+                gx = 0.5*(x[2*n[k]] + cx);
+                gy = 0.5*(x[2*n[k] + 1] + cy);
+                hg =
+                    smoothingLengthRatio_*refinedRadiusRatio_
+                   *std::sqrt(area[el]);
+            }
+            else
+            {
+                gx = cx;
+                gy = cy;
+                hg = smoothingLengthRatio_*std::sqrt(area[el]);
+            }
+        };
+
     // The box of the fluid particles: a ghost farther from it than its
     // largest reach, kappa max(h_ghost, h_max), reaches none (most of the
     // elements, which need no search)
@@ -355,72 +378,44 @@ void Foam::elementParticleCoupling::setGhosts
         #pragma omp parallel for schedule(static) if(end - begin > minParallelParticles)
         for (label el = begin; el < end; ++el)
         {
-            const label* n = &nodes[3*el];
-            const scalar cx = (x[2*n[0]] + x[2*n[1]] + x[2*n[2]])/3;
-            const scalar cy = (x[2*n[0] + 1] + x[2*n[1] + 1] + x[2*n[2] + 1])/3;
             unsigned char* reached = reaches + perElement*(el - begin);
-            if (split)
+            for (label k = 0; k < perElement; ++k)
             {
-                const scalar hSplit =
-                    smoothingLengthRatio_*refinedRadiusRatio_
-                   *std::sqrt(area[el]);
-                for (label k = 0; k < 3; ++k)
-                {
-                    const scalar gx = 0.5*(x[2*n[k]] + cx);
-                    const scalar gy = 0.5*(x[2*n[k] + 1] + cy);
-                    reached[k] =
-                        !outOfReach(gx, gy, hSplit)
-                     && reachesFluid(gx, gy, hSplit);
-                }
-            }
-            else
-            {
-                const scalar hGhost = smoothingLengthRatio_*std::sqrt(area[el]);
-                reached[0] =
-                    !outOfReach(cx, cy, hGhost)
-                 && reachesFluid(cx, cy, hGhost);
+                scalar gx, gy, hg;
+                candidate(el, k, gx, gy, hg);
+                reached[k] = !outOfReach(gx, gy, hg) && reachesFluid(gx, gy, hg);
             }
         }
 
         for (label el = begin; el < end; ++el)
         {
             const unsigned char* reached = reaches + perElement*(el - begin);
-            bool any = false;
-            for (label k = 0; k < perElement; ++k) any = any || reached[k];
-            if (!any) continue;
-
             const label* n = &nodes[3*el];
-            const scalar cx = (x[2*n[0]] + x[2*n[1]] + x[2*n[2]])/3;
-            const scalar cy = (x[2*n[0] + 1] + x[2*n[1] + 1] + x[2*n[2] + 1])/3;
-            if (split)
+            for (label k = 0; k < perElement; ++k)
             {
-                const scalar hSplit =
-                    smoothingLengthRatio_*refinedRadiusRatio_
-                   *std::sqrt(area[el]);
-                for (label k = 0; k < 3; ++k)
-                {
-                    if (!reached[k]) continue;
-                    ghostElement_.push_back(el);
-                    ghostX_.push_back(0.5*(x[2*n[k]] + cx));
-                    ghostX_.push_back(0.5*(x[2*n[k] + 1] + cy));
-                    ghostV_.push_back(v[2*n[k]]);
-                    ghostV_.push_back(v[2*n[k] + 1]);
-                    ghostRho_.push_back(mass[el]/area[el]);
-                    ghostM_.push_back(mass[el]/3);
-                    ghostH_.push_back(hSplit);
-                }
-                continue;
+                if (!reached[k]) continue;
+                scalar gx, gy, hg;
+                candidate(el, k, gx, gy, hg);
+                ghostElement_.push_back(el);
+                ghostX_.push_back(gx);
+                ghostX_.push_back(gy);
+                // Eq. (21): the node's velocity; eq. (17) with equal nodal
+                // shares: their mean
+                ghostV_.push_back
+                (
+                    split ? v[2*n[k]] : (v[2*n[0]] + v[2*n[1]] + v[2*n[2]])/3
+                );
+                ghostV_.push_back
+                (
+                    split
+                  ? v[2*n[k] + 1]
+                  : (v[2*n[0] + 1] + v[2*n[1] + 1] + v[2*n[2] + 1])/3
+                );
+                // Eqs. (18, 20)
+                ghostRho_.push_back(mass[el]/area[el]);
+                ghostM_.push_back(split ? mass[el]/3 : mass[el]);
+                ghostH_.push_back(hg);
             }
-
-            // Eq. (17) with equal nodal shares, eq. (18)
-            ghostElement_.push_back(el);
-            ghostX_.push_back(cx);
-            ghostX_.push_back(cy);
-            ghostV_.push_back((v[2*n[0]] + v[2*n[1]] + v[2*n[2]])/3);
-            ghostV_.push_back((v[2*n[0] + 1] + v[2*n[1] + 1] + v[2*n[2] + 1])/3);
-            ghostRho_.push_back(mass[el]/area[el]);
-            ghostM_.push_back(mass[el]);
-            ghostH_.push_back(smoothingLengthRatio_*std::sqrt(area[el]));
         }
     }
 
