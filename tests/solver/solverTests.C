@@ -2241,6 +2241,39 @@ protected:
             }
         }
     }
+
+    //- The column of nx 20 x 40 with a body three times as dense as the
+    //  water sinking in it, adjusted steps that land on the write times
+    //  (writeControl adjustableRunTime), run continuously to twoT and
+    //  restarted from T: the conversion restart of the SPEM tests (the
+    //  elements distort and convert from about 0.07 s on, so the state at
+    //  T = 0.08 holds elements, particles and the interface)
+    void runConversionRestart
+    (
+        const std::string& T,
+        const std::string& twoT,
+        fs::path& caseA,
+        fs::path& caseB
+    )
+    {
+        nx_ = 20;
+        ny_ = 40;
+        setControl("adjustTimeStep", "yes");
+        setControl("maxCo", "0.5");
+        setControl("deltaT", "1e-4");
+        setControl("writeControl", "adjustableRunTime");
+        setControl("writeInterval", "0.04");
+        rigidBodies_ = floatBody(3);
+        runContinuousAndRestarted
+        (
+            T, twoT,
+            [](const fs::path&)
+            {
+                return std::vector<std::string>{"Restart: read", "fluid particles"};
+            },
+            caseA, caseB
+        );
+    }
 };
 
 
@@ -2408,24 +2441,8 @@ TEST_F(SolverRestart, spemRestartAfterConversionsWithAdjustedStepsIsBitForBit)
     // landing must be computed as the continuous run computes it (before,
     // from the restart's start time, the steps differed at round-off)
     const std::string T = "0.08", twoT = "0.12";
-    nx_ = 20;
-    ny_ = 40;
-    setControl("adjustTimeStep", "yes");
-    setControl("maxCo", "0.5");
-    setControl("deltaT", "1e-4");
-    setControl("writeControl", "adjustableRunTime");
-    setControl("writeInterval", "0.04");
-    rigidBodies_ = floatBody(3);
     fs::path caseA, caseB;
-    runContinuousAndRestarted
-    (
-        T, twoT,
-        [](const fs::path&)
-        {
-            return std::vector<std::string>{"Restart: read", "fluid particles"};
-        },
-        caseA, caseB
-    );
+    runConversionRestart(T, twoT, caseA, caseB);
     if (HasFailure()) return;
     EXPECT_TRUE(fs::exists(caseB/T/"spem"/"convertedTriangles"));
     EXPECT_TRUE(contains(log(), "Conversion at time"));
@@ -2454,25 +2471,9 @@ TEST_F(SolverRestart, multiResolutionRestartAfterConversionsIsBitForBit)
     // particles (level 1 in particleLevel) and the interface, and the run
     // restarted from it writes the same bytes at 2T as the continuous one
     const std::string T = "0.08", twoT = "0.12";
-    nx_ = 20;
-    ny_ = 40;
     schemes_ = "method          multiResolutionSPEM;\n";
-    setControl("adjustTimeStep", "yes");
-    setControl("maxCo", "0.5");
-    setControl("deltaT", "1e-4");
-    setControl("writeControl", "adjustableRunTime");
-    setControl("writeInterval", "0.04");
-    rigidBodies_ = floatBody(3);
     fs::path caseA, caseB;
-    runContinuousAndRestarted
-    (
-        T, twoT,
-        [](const fs::path&)
-        {
-            return std::vector<std::string>{"Restart: read", "fluid particles"};
-        },
-        caseA, caseB
-    );
+    runConversionRestart(T, twoT, caseA, caseB);
     if (HasFailure()) return;
     EXPECT_TRUE(fs::exists(caseB/T/"spem"/"convertedTriangles"));
     EXPECT_TRUE(contains(log(), "refinement (eqs. 19-22)"));
