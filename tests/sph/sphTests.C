@@ -207,6 +207,67 @@ dictionary schemes(const std::string& sphEntries)
     return dictionary(is);
 }
 
+//- The linear velocity v = (a x + b y, c x + d y) of the continuity tests
+//  (div v = a + d)
+const scalar linearA = 0.3, linearB = 0.2, linearC = -0.1, linearD = 0.5;
+
+void setLinearVelocity(particleSet& ps)
+{
+    for (label i = 0; i < ps.size(); ++i)
+    {
+        const scalar* p = &ps.positions()[2*i];
+        ps.velocities()[2*i] = linearA*p[0] + linearB*p[1];
+        ps.velocities()[2*i + 1] = linearC*p[0] + linearD*p[1];
+    }
+}
+
+//- sphFluid's density rate against drho/dt = -rho0 div v for the linear
+//  velocity, with gradientCorrection corr and no diffusion, shifting,
+//  viscosity or gravity (the continuity equation alone), after one step
+//  of 1e-9 s: the worst relative error over the particles at least margin
+//  inside [0, side]^2, and their number. lo, hi: the lost-particle box
+scalar worstContinuityError
+(
+    const particleSet& ps,
+    const word& corr,
+    const scalar side,
+    const scalar margin,
+    const scalar lo[2],
+    const scalar hi[2],
+    label& nChecked
+)
+{
+    sphFluid fluid
+    (
+        schemes
+        (
+            "gradientCorrection " + corr + "; densityDiffusion 0;"
+            " shifting 0;"
+        ),
+        particleSet(ps), 1000, 10, 0, 0, 0, lo, hi
+    );
+    EXPECT_TRUE(fluid.evaluate());
+    const scalar dt = 1e-9;
+    fluid.advance(dt);
+    EXPECT_TRUE(fluid.evaluate());
+
+    scalar worst = 0;
+    nChecked = 0;
+    const particleSet& q = fluid.particles();
+    for (label i = 0; i < q.size(); ++i)
+    {
+        const scalar* p = &q.positions()[2*i];
+        if (std::min({p[0], p[1], side - p[0], side - p[1]}) < margin) continue;
+        ++nChecked;
+        const scalar rate = (q.density()[i] - 1000)/dt;
+        worst = std::max
+        (
+            worst, std::abs(rate/(-1000*(linearA + linearD)) - 1)
+        );
+    }
+    return worst;
+}
+
 } // End anonymous namespace
 
 
@@ -283,47 +344,15 @@ TEST(SphFluid, continuityWithFPMIsExactForLinearVelocityOnIrregularParticles)
     const scalar dx = 0.01;
     const label n = 16;
     particleSet ps = irregularParticles(n, dx, 0.25, 3);
-
-    // v = (a x + b y, c x + d y): div v = a + d
-    const scalar a = 0.3, b = 0.2, c = -0.1, d = 0.5;
-    for (label i = 0; i < ps.size(); ++i)
-    {
-        const scalar* p = &ps.positions()[2*i];
-        ps.velocities()[2*i] = a*p[0] + b*p[1];
-        ps.velocities()[2*i + 1] = c*p[0] + d*p[1];
-    }
-    const particleSet initial = ps;
+    setLinearVelocity(ps);
     const scalar lo[2] = {-1, -1}, hi[2] = {1, 1};
 
     for (const word corr : {"FPM", "none"})
     {
-        // No diffusion, shifting, viscosity or gravity: the density rate
-        // is the continuity equation alone
-        sphFluid fluid
-        (
-            schemes
-            (
-                "gradientCorrection " + corr + "; densityDiffusion 0;"
-                " shifting 0;"
-            ),
-            particleSet(initial), 1000, 10, 0, 0, 0, lo, hi
-        );
-        ASSERT_TRUE(fluid.evaluate());
-        const scalar dt = 1e-9;
-        fluid.advance(dt);
-        ASSERT_TRUE(fluid.evaluate());
-
-        scalar worst = 0;
         label nChecked = 0;
-        const particleSet& q = fluid.particles();
-        for (label i = 0; i < q.size(); ++i)
-        {
-            const scalar* p = &q.positions()[2*i];
-            if (std::min({p[0], p[1], n*dx - p[0], n*dx - p[1]}) < 3*dx) continue;
-            ++nChecked;
-            const scalar rate = (q.density()[i] - 1000)/dt;
-            worst = std::max(worst, std::abs(rate/(-1000*(a + d)) - 1));
-        }
+        const scalar worst =
+            worstContinuityError(ps, corr, n*dx, 3*dx, lo, hi, nChecked);
+        if (::testing::Test::HasFailure()) return;
         ASSERT_GT(nChecked, 50);
         std::cout << corr << ": worst relative error of drho/dt "
                   << worst << std::endl;
@@ -870,41 +899,15 @@ TEST(MixedResolution, fpmContinuityIsExactForLinearVelocityOnAMixedSet)
     particleSet ps = mixedResolutionParticles(14, 0.5, 9);
     scalar hMin, hMax;
     smoothingLengthRange(ps, hMin, hMax);
-    const scalar a = 0.3, b = 0.2, c = -0.1, d = 0.5;
-    for (label i = 0; i < ps.size(); ++i)
-    {
-        const scalar* p = &ps.positions()[2*i];
-        ps.velocities()[2*i] = a*p[0] + b*p[1];
-        ps.velocities()[2*i + 1] = c*p[0] + d*p[1];
-    }
+    setLinearVelocity(ps);
     const scalar lo[2] = {-1, -1}, hi[2] = {2, 2};
     for (const word corr : {"FPM", "none"})
     {
         SCOPED_TRACE(corr);
-        sphFluid fluid
-        (
-            schemes
-            (
-                "gradientCorrection " + corr + "; densityDiffusion 0;"
-                " shifting 0;"
-            ),
-            particleSet(ps), 1000, 10, 0, 0, 0, lo, hi
-        );
-        ASSERT_TRUE(fluid.evaluate());
-        const scalar dt = 1e-9;
-        fluid.advance(dt);
-        ASSERT_TRUE(fluid.evaluate());
-        scalar worst = 0;
         label nChecked = 0;
-        const particleSet& q = fluid.particles();
-        for (label i = 0; i < q.size(); ++i)
-        {
-            const scalar* p = &q.positions()[2*i];
-            if (std::min({p[0], p[1], 1 - p[0], 1 - p[1]}) < 2*hMax) continue;
-            ++nChecked;
-            const scalar rate = (q.density()[i] - 1000)/dt;
-            worst = std::max(worst, std::abs(rate/(-1000*(a + d)) - 1));
-        }
+        const scalar worst =
+            worstContinuityError(ps, corr, 1, 2*hMax, lo, hi, nChecked);
+        if (::testing::Test::HasFailure()) return;
         ASSERT_GT(nChecked, 100);
         std::cout << corr << ": worst relative error of drho/dt " << worst
                   << std::endl;
