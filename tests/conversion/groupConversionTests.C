@@ -114,15 +114,15 @@ std::vector<label> trianglesOfDistortedGroups
     return out;
 }
 
-} // End anonymous namespace
-
-
-TEST(ElementConversion, conservesMassExactlyAndMomentumToRoundOff)
+//- The water elements of mesh with a non-uniform initial density (a
+//  hydrostatic-like gradient), nodes displaced by up to 0.01 and random
+//  velocities of up to 1 per component (seed)
+std::unique_ptr<Foam::elementModel> perturbedWater
+(
+    const Foam::triMesh& mesh,
+    const unsigned seed
+)
 {
-    // A fluid block with a non-uniform initial density (a hydrostatic-like
-    // gradient), random velocities and displaced nodes
-    const Foam::triMesh mesh =
-        testMeshes::build({{0, 1, 0, 1, 10, 10, "water"}});
     std::vector<scalar> density(mesh.nTriangles());
     for (label t = 0; t < mesh.nTriangles(); ++t)
     {
@@ -132,12 +132,27 @@ TEST(ElementConversion, conservesMassExactlyAndMomentumToRoundOff)
     (
         mesh, testModels::materials(mesh, {{"water", water}}), {}, density
     );
-    std::mt19937 gen(7);
+    std::mt19937 gen(seed);
     std::uniform_real_distribution<scalar> u(-1, 1);
     std::vector<scalar> x = mesh.points(), v(x.size());
     for (scalar& c : x) c += 0.01*u(gen);
     for (scalar& c : v) c = u(gen);
     em->setState(x, v);
+    return em;
+}
+
+} // End anonymous namespace
+
+
+TEST(ElementConversion, conservesMassExactlyAndMomentumToRoundOff)
+{
+    // A fluid block with a non-uniform initial density (a hydrostatic-like
+    // gradient), random velocities and displaced nodes
+    const Foam::triMesh mesh =
+        testMeshes::build({{0, 1, 0, 1, 10, 10, "water"}});
+    auto em = perturbedWater(mesh, 7);
+    // The state it starts from (setState's copy)
+    const std::vector<scalar> x = em->positions(), v = em->velocities();
 
     Foam::particleSet ps;
     const totals before = sum(*em, ps);
@@ -520,21 +535,9 @@ TEST(Refinement, conservesMassExactlyAndMomentumToRoundOffOnAGroup)
     // random velocities, two conversions after another
     const Foam::triMesh mesh =
         testMeshes::build({{0, 1, 0, 1, 10, 10, "water"}});
-    std::vector<scalar> density(mesh.nTriangles());
-    for (label t = 0; t < mesh.nTriangles(); ++t)
-    {
-        density[t] = 1000 + 0.37*t;
-    }
-    auto em = testModels::model
-    (
-        mesh, testModels::materials(mesh, {{"water", water}}), {}, density
-    );
-    std::mt19937 gen(17);
-    std::uniform_real_distribution<scalar> u(-1, 1);
-    std::vector<scalar> x = mesh.points(), v(x.size());
-    for (scalar& c : x) c += 0.01*u(gen);
-    for (scalar& c : v) c = u(gen);
-    em->setState(x, v);
+    auto em = perturbedWater(mesh, 17);
+    // The state it starts from (setState's copy)
+    const std::vector<scalar> x = em->positions(), v = em->velocities();
     std::vector<scalar> elementMass(mesh.nTriangles());
     for (label el = 0; el < em->nElements(); ++el)
     {
