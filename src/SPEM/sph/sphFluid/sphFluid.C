@@ -71,38 +71,27 @@ namespace
         }
     }
 
-    //- Eq. (16): the acceleration of fluid particle i due to particle j,
-    //  pressure and viscous terms, with (dx, dy) = x_i - x_j at distance r.
-    //  Pressure with the kernel gradient as the paper writes it (C null),
-    //  or with G_ij = (C_i + C_j)/2 grad_i W_ij (C: 3 per particle, C_j = I
-    //  for dummies and ghosts; see sphFluid.H, momentumGradient). Either is
-    //  antisymmetric in i, j. Shared by the momentum pass and the
-    //  structure force pass, so that a structure gets exactly the opposite
-    //  of the fluid's pair forces.
-    template<class Kernel>
-    inline void pairAcceleration
+    //- The pressure term of eq. (16): the acceleration of fluid particle i
+    //  due to the pressure of particle j, with (dx, dy) = x_i - x_j and F
+    //  = F(r, h_ij) of the kernel. With the kernel gradient as the paper
+    //  writes it (C null), or with G_ij = (C_i + C_j)/2 grad_i W_ij (C: 3
+    //  per particle, C_j = I for dummies and ghosts; see sphFluid.H,
+    //  momentumGradient). Either is antisymmetric in i, j.
+    inline void pairPressureAcceleration
     (
         const fluidSide& fi,
         const label j,
-        const scalar dx,
-        const scalar dy,
-        const scalar r,
-        const scalar hij,
-        const scalar* __restrict__ v,
+        const scalar gxw,
+        const scalar gyw,
         const scalar* __restrict__ m,
         const scalar* __restrict__ rho,
         const scalar* __restrict__ p,
         const particleSet::kind* __restrict__ kind,
         const scalar* __restrict__ C,
-        const scalar mu,
         scalar& fx,
         scalar& fy
     )
     {
-        const scalar F = Kernel::F(r, hij);
-        const scalar gxw = dx*F, gyw = dy*F;
-
-        // Pressure
         const scalar rhoj = rho[j];
         const scalar pf = -m[j]*(fi.pr + p[j]/(rhoj*rhoj));
         if (C)
@@ -120,17 +109,69 @@ namespace
             fx = pf*gxw;
             fy = pf*gyw;
         }
+    }
+
+    //- Eq. (16): the acceleration of fluid particle i due to particle j,
+    //  pressure and viscous terms, with (dx, dy) = x_i - x_j at distance
+    //  r; its pressure part in (fpx, fpy). Shared by the momentum pass
+    //  and the reaction passes, so that a structure or a ghost gets
+    //  exactly the opposite of the fluid's pair forces.
+    template<class Kernel>
+    inline void pairAcceleration
+    (
+        const fluidSide& fi,
+        const label j,
+        const scalar dx,
+        const scalar dy,
+        const scalar r,
+        const scalar hij,
+        const scalar* __restrict__ v,
+        const scalar* __restrict__ m,
+        const scalar* __restrict__ rho,
+        const scalar* __restrict__ p,
+        const particleSet::kind* __restrict__ kind,
+        const scalar* __restrict__ C,
+        const scalar mu,
+        scalar& fx,
+        scalar& fy,
+        scalar& fpx,
+        scalar& fpy
+    )
+    {
+        const scalar F = Kernel::F(r, hij);
+        const scalar gxw = dx*F, gyw = dy*F;
+        pairPressureAcceleration(fi, j, gxw, gyw, m, rho, p, kind, C, fpx, fpy);
+        fx = fpx;
+        fy = fpy;
 
         // Viscous: no viscous stress at a free-slip wall
         if (kind[j] != particleSet::kind::slipWall)
         {
-            const scalar rs = fi.rho + rhoj;
+            const scalar rs = fi.rho + rho[j];
             const scalar vf =
                 4*m[j]*2*mu*(dx*gxw + dy*gyw)
                /(rs*rs*(r*r + 0.01*hij*hij));
             fx += vf*(fi.vx - v[2*j]);
             fy += vf*(fi.vy - v[2*j + 1]);
         }
+    }
+
+    //- The part of a wall's pressure force (fpx, fpy) on a fluid particle
+    //  that the elements make: share s of its component tangential to the
+    //  wall (unit normal (nx, ny)); see sphFluid.H, wallElementShare_
+    inline void elementPartOfWallForce
+    (
+        const scalar* __restrict__ share,
+        const scalar fpx,
+        const scalar fpy,
+        scalar& tx,
+        scalar& ty
+    )
+    {
+        const scalar s = share[0], nx = share[1], ny = share[2];
+        const scalar fn = fpx*nx + fpy*ny;
+        tx = s*(fpx - fn*nx);
+        ty = s*(fpy - fn*ny);
     }
 
     //- The neighbour sums of the density pass for fluid particle i
@@ -602,6 +643,8 @@ void Foam::sphFluid::resizeFields()
     const label n = particles_.size();
     acceleration_.resize(2*n, 0);
     ghostAcceleration_.resize(2*n, 0);
+    wallElementShare_.resize(4*n, 0);
+    wallElementForce_.resize(2*n, 0);
     if (controls_.momentumGradient == momentumGradientType::symmetrisedCorrection)
     {
         correction_.resize(3*n, 0);
@@ -737,8 +780,10 @@ void Foam::sphFluid::wallPass(const Kernel&)
     scalar* __restrict__ p = particles_.pressure().data();
     const label* __restrict__ id = particles_.id().data();
     const scalar* __restrict__ aStructure = structureAcceleration_.data();
+    scalar* __restrict__ share = wallElementShare_.data();
     const scalar c2 = c_*c_, rho0 = rho0_;
     const bool structureSuction = controls_.structureSuction;
+    const bool ghosts = nGhost_ > 0;
 
     const label nWalls = label(wallIndex_.size());
     const label* __restrict__ walls = wallIndex_.data();
@@ -755,6 +800,7 @@ void Foam::sphFluid::wallPass(const Kernel&)
         const scalar gy = gy_ - (structure ? aStructure[2*id[w] + 1] : 0);
 
         scalar sumW = 0, sumP = 0, sumRhoX = 0, sumRhoY = 0, sumU = 0, sumV = 0;
+        scalar sumGhostW = 0, sumX = 0, sumY = 0;
         cells_.forEachNeighbour
         (
             particles_, w, kappa,
@@ -777,8 +823,29 @@ void Foam::sphFluid::wallPass(const Kernel&)
                 sumRhoY += rho[f]*dy*W;
                 sumU += v[2*f]*W;
                 sumV += v[2*f + 1]*W;
+                if (ghosts)
+                {
+                    sumX += dx*W;
+                    sumY += dy*W;
+                    if (kind[f] == particleSet::kind::ghost) sumGhostW += W;
+                }
             }
         );
+
+        // A wall at rest whose pressure the elements make in part
+        scalar* sw = &share[4*w];
+        sw[0] = 0;
+        if (sumGhostW > 0 && !structure)
+        {
+            const scalar d = std::sqrt(sumX*sumX + sumY*sumY);
+            if (d > 0)
+            {
+                sw[0] = sumGhostW/sumW;
+                sw[1] = sumX/d;
+                sw[2] = sumY/d;
+                sw[3] = sumW;
+            }
+        }
 
         if (sumW > 0)
         {
@@ -819,6 +886,7 @@ void Foam::sphFluid::momentumPass(const Kernel&)
     const scalar* __restrict__ C = correctionData();
     scalar* __restrict__ a = acceleration_.data();
     scalar* __restrict__ aGhost = ghostAcceleration_.data();
+    const scalar* __restrict__ share = wallElementShare_.data();
 
     const scalar mu = mu_, gx = gx_, gy = gy_, c = c_;
     const scalar nu = mu_/rho0_;
@@ -844,11 +912,11 @@ void Foam::sphFluid::momentumPass(const Kernel&)
             particles_, i, kappa,
             [&](const label j, const scalar dx, const scalar dy, const scalar r)
             {
-                scalar fx, fy;
+                scalar fx, fy, fpx, fpy;
                 pairAcceleration<Kernel>
                 (
                     fi, j, dx, dy, r, 0.5*(h[i] + h[j]),
-                    v, m, rho, p, kind, C, mu, fx, fy
+                    v, m, rho, p, kind, C, mu, fx, fy, fpx, fpy
                 );
                 ax += fx;
                 ay += fy;
@@ -861,6 +929,15 @@ void Foam::sphFluid::momentumPass(const Kernel&)
                 {
                     wx += fx;
                     wy += fy;
+                    if (share[4*j] > 0)
+                    {
+                        scalar tx, ty;
+                        elementPartOfWallForce(&share[4*j], fpx, fpy, tx, ty);
+                        wx -= tx;
+                        wy -= ty;
+                        gfx += tx;
+                        gfy += ty;
+                    }
                 }
                 else if (kind[j] == particleSet::kind::ghost)
                 {
@@ -926,6 +1003,11 @@ void Foam::sphFluid::reactionPass
     const scalar* __restrict__ C = correctionData();
     scalar* __restrict__ force = reaction.data();
     const scalar mu = mu_;
+    // Ghosts also get the elements' part of the wall forces, in the
+    // shares that made it (see wallElementPass)
+    const bool ghosts = k == particleSet::kind::ghost;
+    const scalar* __restrict__ share = wallElementShare_.data();
+    const scalar* __restrict__ wallPart = wallElementForce_.data();
 
     // F_w = -sum_f m_f a_fw: the pair forces of the momentum pass, seen
     // from the particle w (a gather: no two threads write one w)
@@ -943,14 +1025,30 @@ void Foam::sphFluid::reactionPass
             particles_, w, kappa,
             [&](const label f, const scalar dx, const scalar dy, const scalar r)
             {
-                if (kind[f] != particleSet::kind::fluid) return;
+                if (kind[f] != particleSet::kind::fluid)
+                {
+                    if
+                    (
+                        ghosts
+                     && particleSet::isWall(kind[f])
+                     && share[4*f] > 0
+                    )
+                    {
+                        const scalar W = Kernel::W(r, 0.5*(h[f] + h[w]));
+                        // W over the ghosts' sum at wall f
+                        const scalar s = W/(share[4*f]*share[4*f + 3]);
+                        Fx += s*wallPart[2*f];
+                        Fy += s*wallPart[2*f + 1];
+                    }
+                    return;
+                }
                 const fluidSide ff = makeFluidSide(f, v, rho, p, C);
-                scalar fx, fy;
+                scalar fx, fy, fpx, fpy;
                 // (dx, dy) = x_w - x_f; the pair needs x_f - x_w
                 pairAcceleration<Kernel>
                 (
                     ff, w, -dx, -dy, r, 0.5*(h[f] + h[w]),
-                    v, m, rho, p, kind, C, mu, fx, fy
+                    v, m, rho, p, kind, C, mu, fx, fy, fpx, fpy
                 );
                 Fx -= m[f]*fx;
                 Fy -= m[f]*fy;
@@ -958,6 +1056,55 @@ void Foam::sphFluid::reactionPass
         );
         force[2*id[w]] = Fx;
         force[2*id[w] + 1] = Fy;
+    }
+}
+
+
+template<class Kernel>
+void Foam::sphFluid::wallElementPass(const Kernel&)
+{
+    const scalar kappa = Kernel::support;
+    const scalar* __restrict__ v = particles_.velocities().data();
+    const scalar* __restrict__ m = particles_.mass().data();
+    const scalar* __restrict__ h = particles_.smoothingLength().data();
+    const scalar* __restrict__ rho = particles_.density().data();
+    const scalar* __restrict__ p = particles_.pressure().data();
+    const particleSet::kind* __restrict__ kind = particles_.kinds().data();
+    const scalar* __restrict__ C = correctionData();
+    const scalar* __restrict__ share = wallElementShare_.data();
+    scalar* __restrict__ force = wallElementForce_.data();
+
+    // The elements' part of the pair forces of the momentum pass, seen
+    // from the wall particle w (a gather: no two threads write one w)
+    const label nWalls = label(wallIndex_.size());
+    const label* __restrict__ walls = wallIndex_.data();
+    #pragma omp parallel for schedule(static, passChunk) if(nWalls > minParallelParticles)
+    for (label k = 0; k < nWalls; ++k)
+    {
+        const label w = walls[k];
+        if (!(share[4*w] > 0)) continue;
+        scalar Fx = 0, Fy = 0;
+        cells_.forEachNeighbour
+        (
+            particles_, w, kappa,
+            [&](const label f, const scalar dx, const scalar dy, const scalar r)
+            {
+                if (kind[f] != particleSet::kind::fluid) return;
+                const fluidSide ff = makeFluidSide(f, v, rho, p, C);
+                // (dx, dy) = x_w - x_f; the pair needs x_f - x_w
+                const scalar F = Kernel::F(r, 0.5*(h[f] + h[w]));
+                scalar fpx, fpy, tx, ty;
+                pairPressureAcceleration
+                (
+                    ff, w, -dx*F, -dy*F, m, rho, p, kind, C, fpx, fpy
+                );
+                elementPartOfWallForce(&share[4*w], fpx, fpy, tx, ty);
+                Fx -= m[f]*tx;
+                Fy -= m[f]*ty;
+            }
+        );
+        force[2*w] = Fx;
+        force[2*w + 1] = Fy;
     }
 }
 
@@ -1010,6 +1157,7 @@ bool Foam::sphFluid::evaluate()
     }
     if (nGhost_ > 0)
     {
+        kernel_->visit([this](const auto& k) { wallElementPass(k); });
         kernel_->visit
         (
             [this](const auto& k)
