@@ -402,8 +402,8 @@ TEST(SpemValidation, hydrostaticColumnWithParticlesOnElementsHasContinuousPressu
     // less the particles' reaction to the elements). Measured: before the
     // elements' share of the wall dummies' pressure (sphFluid.H,
     // wallElementShare_) went to the elements, 11.98 and 12.07 N/m of
-    // 735.75 N/m (1.6 %); with it 1.16 and 1.26 N/m (0.16 %, and
-    // 0.17-0.26 % on the walls with the other three exchanges)
+    // 735.75 N/m (1.6 %); with it 0.38 and 0.47 N/m (0.06 %; on the
+    // walls 1.21-1.54 N/m, 0.16-0.21 %, with the three exact exchanges)
     const double weight = rho0*g*(H - yInterface)*H;
     const std::string log = testFiles::readText(caseDir/"log.spemFoam");
     const auto lastPair = [&](const std::string& name)

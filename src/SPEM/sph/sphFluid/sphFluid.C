@@ -156,24 +156,6 @@ namespace
         }
     }
 
-    //- The part of a wall's pressure force (fpx, fpy) on a fluid particle
-    //  that the elements make: share s of its component tangential to the
-    //  wall (unit normal (nx, ny)); see sphFluid.H, wallElementShare_
-    inline void elementPartOfWallForce
-    (
-        const scalar* __restrict__ share,
-        const scalar fpx,
-        const scalar fpy,
-        scalar& tx,
-        scalar& ty
-    )
-    {
-        const scalar s = share[0], nx = share[1], ny = share[2];
-        const scalar fn = fpx*nx + fpy*ny;
-        tx = s*(fpx - fn*nx);
-        ty = s*(fpy - fn*ny);
-    }
-
     //- The neighbour sums of the density pass for fluid particle i
     struct densitySums
     {
@@ -643,7 +625,7 @@ void Foam::sphFluid::resizeFields()
     const label n = particles_.size();
     acceleration_.resize(2*n, 0);
     ghostAcceleration_.resize(2*n, 0);
-    wallElementShare_.resize(4*n, 0);
+    wallElementShare_.resize(2*n, 0);
     wallElementForce_.resize(2*n, 0);
     if (controls_.momentumGradient == momentumGradientType::symmetrisedCorrection)
     {
@@ -800,7 +782,7 @@ void Foam::sphFluid::wallPass(const Kernel&)
         const scalar gy = gy_ - (structure ? aStructure[2*id[w] + 1] : 0);
 
         scalar sumW = 0, sumP = 0, sumRhoX = 0, sumRhoY = 0, sumU = 0, sumV = 0;
-        scalar sumGhostW = 0, sumX = 0, sumY = 0;
+        scalar sumGhostW = 0;
         cells_.forEachNeighbour
         (
             particles_, w, kappa,
@@ -823,28 +805,21 @@ void Foam::sphFluid::wallPass(const Kernel&)
                 sumRhoY += rho[f]*dy*W;
                 sumU += v[2*f]*W;
                 sumV += v[2*f + 1]*W;
-                if (ghosts)
+                if (ghosts && kind[f] == particleSet::kind::ghost)
                 {
-                    sumX += dx*W;
-                    sumY += dy*W;
-                    if (kind[f] == particleSet::kind::ghost) sumGhostW += W;
+                    sumGhostW += W;
                 }
             }
         );
 
-        // A wall at rest whose pressure the elements make in part
-        scalar* sw = &share[4*w];
+        // A wall at rest whose pressure the elements make in part: their
+        // share of its kernel sum, and the sum
+        scalar* sw = &share[2*w];
         sw[0] = 0;
         if (sumGhostW > 0 && !structure)
         {
-            const scalar d = std::sqrt(sumX*sumX + sumY*sumY);
-            if (d > 0)
-            {
-                sw[0] = sumGhostW/sumW;
-                sw[1] = sumX/d;
-                sw[2] = sumY/d;
-                sw[3] = sumW;
-            }
+            sw[0] = sumGhostW/sumW;
+            sw[1] = sumW;
         }
 
         if (sumW > 0)
@@ -927,17 +902,12 @@ void Foam::sphFluid::momentumPass(const Kernel&)
                 }
                 else if (particleSet::isWall(kind[j]))
                 {
-                    wx += fx;
-                    wy += fy;
-                    if (share[4*j] > 0)
-                    {
-                        scalar tx, ty;
-                        elementPartOfWallForce(&share[4*j], fpx, fpy, tx, ty);
-                        wx -= tx;
-                        wy -= ty;
-                        gfx += tx;
-                        gfy += ty;
-                    }
+                    // Less the elements' part of the wall's push
+                    const scalar tx = share[2*j]*fpx, ty = share[2*j]*fpy;
+                    wx += fx - tx;
+                    wy += fy - ty;
+                    gfx += tx;
+                    gfy += ty;
                 }
                 else if (kind[j] == particleSet::kind::ghost)
                 {
@@ -1031,12 +1001,12 @@ void Foam::sphFluid::reactionPass
                     (
                         ghosts
                      && particleSet::isWall(kind[f])
-                     && share[4*f] > 0
+                     && share[2*f] > 0
                     )
                     {
                         const scalar W = Kernel::W(r, 0.5*(h[f] + h[w]));
                         // W over the ghosts' sum at wall f
-                        const scalar s = W/(share[4*f]*share[4*f + 3]);
+                        const scalar s = W/(share[2*f]*share[2*f + 1]);
                         Fx += s*wallPart[2*f];
                         Fy += s*wallPart[2*f + 1];
                     }
@@ -1082,7 +1052,7 @@ void Foam::sphFluid::wallElementPass(const Kernel&)
     for (label k = 0; k < nWalls; ++k)
     {
         const label w = walls[k];
-        if (!(share[4*w] > 0)) continue;
+        if (!(share[2*w] > 0)) continue;
         scalar Fx = 0, Fy = 0;
         cells_.forEachNeighbour
         (
@@ -1093,14 +1063,13 @@ void Foam::sphFluid::wallElementPass(const Kernel&)
                 const fluidSide ff = makeFluidSide(f, v, rho, p, C);
                 // (dx, dy) = x_w - x_f; the pair needs x_f - x_w
                 const scalar F = Kernel::F(r, 0.5*(h[f] + h[w]));
-                scalar fpx, fpy, tx, ty;
+                scalar fpx, fpy;
                 pairPressureAcceleration
                 (
                     ff, w, -dx*F, -dy*F, m, rho, p, kind, C, fpx, fpy
                 );
-                elementPartOfWallForce(&share[4*w], fpx, fpy, tx, ty);
-                Fx -= m[f]*tx;
-                Fy -= m[f]*ty;
+                Fx -= m[f]*share[2*w]*fpx;
+                Fy -= m[f]*share[2*w]*fpy;
             }
         );
         force[2*w] = Fx;
