@@ -303,14 +303,29 @@ std::pair<double, double> fitLine
 } // End anonymous namespace
 
 
-TEST(SpemValidation, hydrostaticColumnWithParticlesOnElementsHasContinuousPressure)
+namespace
 {
+
+//- hydrostaticTank (nx 20) with its top 0.15 m preset as particles over
+//  elements, run to 1 s with the given method; jumpTolerance is the bound
+//  on the pressure jump across the interface, as a fraction of rho g H
+void particlesOnElementsColumn
+(
+    const std::string& method,
+    const double jumpTolerance
+)
+{
+    SCOPED_TRACE(method);
+    const bool refined = method == "multiResolutionSPEM";
     const fs::path caseDir =
-        copyTutorial("hydrostaticTank", "spemHydrostaticParticlesOnElements");
+        copyTutorial
+        (
+            "hydrostaticTank", "spemHydrostaticParticlesOnElements" + method
+        );
     replaceEntry(caseDir/"system/blockMeshDict", "nx", "20");
     replaceEntry(caseDir/"system/controlDict", "endTime", "1");
     replaceEntry(caseDir/"system/controlDict", "writeInterval", "0.5");
-    replaceEntry(caseDir/"system/spemSchemes", "method", "SPEM");
+    replaceEntry(caseDir/"system/spemSchemes", "method", method);
     // The top 0.15 m as particles from t = 0; the rest stays elements
     const double yInterface = 0.35;
     {
@@ -322,12 +337,13 @@ TEST(SpemValidation, hydrostaticColumnWithParticlesOnElementsHasContinuousPressu
     ASSERT_TRUE(runCase(caseDir));
 
     // Tutorial constants: W = H = 0.5 m, rho0 1000, g 9.81; nx 20: 800
-    // triangles, 6 of the 20 rows of cells preset (240 triangles)
+    // triangles, 6 of the 20 rows of cells preset (240 triangles, each one
+    // particle or three refined ones)
     const double H = 0.5, rho0 = 1000, g = 9.81, scale = rho0*g*H;
     const blockData elements = readLastBlock(caseDir, "elements", "pressure");
     const blockData particles = readLastBlock(caseDir, "particles", "pressure");
     EXPECT_EQ(elements.value.size(), 560u) << "elements converted at rest";
-    EXPECT_EQ(particles.value.size(), 240u);
+    EXPECT_EQ(particles.value.size(), refined ? 720u : 240u);
 
     // Nothing moves: the fastest node or particle at 1 s against the
     // free-fall speed sqrt(2 g H)
@@ -337,8 +353,8 @@ TEST(SpemValidation, hydrostaticColumnWithParticlesOnElementsHasContinuousPressu
     const double vFall = std::sqrt(2*g*H);
     EXPECT_LT(vMax, 0.01*vFall);
 
-    // No particle sank into the elements (half a particle spacing of
-    // tolerance: the lowest row sits at 1/3 of a cell above the interface)
+    // No particle sank into the elements (the lowest row sits at 1/3 of a
+    // cell above the interface, 1/6 refined)
     const double dx = H/20;
     double yLowest = H;
     for (const double y : particles.y) yLowest = std::min(yLowest, y);
@@ -390,7 +406,7 @@ TEST(SpemValidation, hydrostaticColumnWithParticlesOnElementsHasContinuousPressu
         yInterface, pBelow, pAbove, 100*(pAbove - pBelow)/scale,
         rho0*g*(H - yInterface), below.second, above.second, vMax, yLowest
     );
-    EXPECT_LT(std::abs(pAbove - pBelow), 0.02*scale);
+    EXPECT_LT(std::abs(pAbove - pBelow), jumpTolerance*scale);
     EXPECT_LT(std::abs(below.second/(-rho0*g) - 1), 0.05);
     EXPECT_LT(std::abs(above.second/(-rho0*g) - 1), 0.05);
 
@@ -433,7 +449,25 @@ TEST(SpemValidation, hydrostaticColumnWithParticlesOnElementsHasContinuousPressu
     EXPECT_LT(std::abs(walls.second), 0.005*weight);
     EXPECT_LT(std::abs(imbalance.second), 0.005*weight);
 
-    if (!HasFailure()) fs::remove_all(caseDir);
+    if (!::testing::Test::HasFailure()) fs::remove_all(caseDir);
+}
+
+} // End anonymous namespace
+
+
+TEST(SpemValidation, hydrostaticColumnWithParticlesOnElementsHasContinuousPressure)
+{
+    particlesOnElementsColumn("SPEM", 0.02);
+}
+
+
+// The paper's sect. 3.1 set-up on the tank: refined particles over coarse
+// elements, with split ghosts; issue 15 asks for a jump below 1 % of
+// rho g H. Measured: jump -0.47 %, the refined particles' bands 0.2-0.8 %
+// low, walls -0.04 N/m, imbalance round-off (balancedTraction)
+TEST(SpemValidation, hydrostaticColumnOfRefinedParticlesOnElementsHasContinuousPressure)
+{
+    particlesOnElementsColumn("multiResolutionSPEM", 0.01);
 }
 
 
