@@ -14,10 +14,24 @@ None if the run has no data to measure it.
     midSpan         hydrostaticElasticPlate: |relative error| of the
                     mid-span deflection (mean of the last 10 % of the run)
                     against Euler-Bernoulli plate theory
+    hydrostaticPressure
+                    hydrostaticTank: largest |p - rho0 g (H - y)| of its
+                    pressure probes (mean of the last 10 % of the run),
+                    relative to rho0 g H
+    bodyForce       wedgeWaterEntry, cylinderWaterExit, cylinderSinking:
+                    RMS difference of the body's vertical force (the
+                    rigidBodyState table's Fy) from the reference run's,
+                    over the times both cover, relative to the RMS of the
+                    reference run's
     finest          any case: RMS difference of the first column of the
                     first function object in postProcessing/ from the
-                    finest run's, over the times both cover, relative to
-                    the RMS of the finest run's (0 for the finest itself)
+                    reference run's, over the times both cover, relative
+                    to the RMS of the reference run's (0 for itself)
+
+The reference run of bodyForce and finest is spemStudy's: in a study of
+methods and resolutions, the first method's run at the largest
+resolution, so that every method is measured against one run; in a
+stability map, the finest run.
 """
 
 import math
@@ -143,10 +157,90 @@ def firstCurve(caseDir):
     return None, [], []
 
 
+def hydrostaticPressure(caseDir, finestDir=None, rho0=1000, g=9.81, H=0.5,
+                        averagedFraction=0.1):
+    what = "largest |p - rho0 g (H - y)| of the probes, relative to rho0 g H"
+    base = os.path.join(caseDir, "postProcessing")
+    name = None
+    if os.path.isdir(base):
+        for n in sorted(os.listdir(base)):
+            if functionObjectRows(caseDir, n) and probeHeights(caseDir, n):
+                name = n
+                break
+    if name is None:
+        return None, "", what
+    rows = functionObjectRows(caseDir, name)
+    heights = probeHeights(caseDir, name)
+    tStart = rows[-1][0] - averagedFraction*(rows[-1][0] - rows[0][0])
+    last = [r for r in rows if r[0] >= tStart]
+    worst = 0
+    for k, y in enumerate(heights):
+        p = sum(r[k + 1] for r in last)/len(last)
+        worst = max(worst, abs(p - rho0*g*(H - y))/(rho0*g*H))
+    return worst, "", what
+
+
+def probeHeights(caseDir, name):
+    """y of each probe of a pressureProbe table (its '# Probe k (x y)'
+    header lines), or [] if the table has none."""
+    base = os.path.join(caseDir, "postProcessing", name)
+    heights = []
+    for start in sorted(os.listdir(base)):
+        path = os.path.join(base, start, name + ".dat")
+        if not os.path.isfile(path):
+            continue
+        with open(path) as f:
+            for line in f:
+                if not line.startswith("#"):
+                    break
+                words = line.replace("(", " ").replace(")", " ").split()
+                if len(words) >= 5 and words[1] == "Probe":
+                    heights.append(float(words[4]))
+        break
+    return heights
+
+
+def bodyCurve(caseDir):
+    """(times, Fy) of the rigidBodyState table in postProcessing/ (the one
+    whose header names Fy), or ([], [])."""
+    base = os.path.join(caseDir, "postProcessing")
+    if not os.path.isdir(base):
+        return [], []
+    for name in sorted(os.listdir(base)):
+        for start in sorted(os.listdir(os.path.join(base, name))):
+            path = os.path.join(base, name, start, name + ".dat")
+            if not os.path.isfile(path):
+                continue
+            with open(path) as f:
+                header = f.readline().split()
+            if "Fy" in header:
+                column = header.index("Fy") - 1
+                rows = functionObjectRows(caseDir, name)
+                return [r[0] for r in rows], [r[column] for r in rows]
+    return [], []
+
+
+def bodyForce(caseDir, finestDir):
+    what = "RMS difference of the body's vertical force from the " \
+        "reference run's, relative"
+    t, y = bodyCurve(caseDir)
+    tF, yF = bodyCurve(finestDir) if finestDir else ([], [])
+    if not t or not tF:
+        return None, "", what
+    common = [(ti, yi) for ti, yi in zip(tF, yF) if t[0] <= ti <= t[-1]]
+    if not common:
+        return None, "", what
+    diff = sum((interpolate(ti, t, y) - yi)**2 for ti, yi in common)
+    norm = sum(yi**2 for ti, yi in common)
+    if norm == 0:
+        return (0.0 if diff == 0 else None), "", what
+    return math.sqrt(diff/norm), "", what
+
+
 def finest(caseDir, finestDir):
     name, t, y = firstCurve(caseDir)
     nameF, tF, yF = firstCurve(finestDir)
-    what = "RMS difference from the finest run (%s), relative" % nameF
+    what = "RMS difference from the reference run (%s), relative" % nameF
     if name is None or nameF is None or name != nameF:
         return None, "", what
     common = [(ti, yi) for ti, yi in zip(tF, yF) if t[0] <= ti <= t[-1]]
@@ -163,12 +257,21 @@ measures = {
     "surgeFront": surgeFront,
     "plateTip": plateTip,
     "midSpan": midSpan,
+    "hydrostaticPressure": hydrostaticPressure,
+    "bodyForce": bodyForce,
     "finest": finest,
 }
+
+#- The measures that compare a run with the study's reference run
+referenceMeasures = ("bodyForce", "finest")
 
 #- The measure of each tutorial when spemStudyDict names none
 tutorialMeasures = {
     "damBreak": "surgeFront",
     "damBreakElasticPlate": "plateTip",
     "hydrostaticElasticPlate": "midSpan",
+    "hydrostaticTank": "hydrostaticPressure",
+    "wedgeWaterEntry": "bodyForce",
+    "cylinderWaterExit": "bodyForce",
+    "cylinderSinking": "bodyForce",
 }

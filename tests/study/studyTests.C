@@ -313,6 +313,44 @@ TEST(SpemStudy, errorMeasuresGiveZeroOnItselfAndTheRightValueOnSyntheticCurves)
     writeTable(root/"d", "surgeFront", front);
     EXPECT_NEAR(pythonValue(root, "print(e.surgeFront('d')[0])"), 0.1, 1e-9);
 
+    // Tank probes at y = 0 and 0.25 m (H 0.5 m): over the last 10 % of
+    // the run the first reads rho0 g H plus 1 % of it, the second exactly
+    // rho0 g (H - y): largest error 0.01
+    {
+        const fs::path dir = root/"e"/"postProcessing"/"probes"/"0";
+        fs::create_directories(dir);
+        std::ofstream os(dir/"probes.dat");
+        os.precision(17);
+        const double scale = 1000*9.81*0.5;
+        os  << "# Probe 0 (0.25 0)\n# Probe 1 (0.25 0.25)\n"
+            << "#  Probe 0 1\n# Time\n";
+        for (int k = 0; k <= 10; ++k)
+        {
+            // Far from the end the first probe reads something else
+            const double p0 = k >= 9 ? 1.01*scale : 0.8*scale;
+            os  << 0.1*k << '\t' << p0 << '\t' << 0.5*scale << '\n';
+        }
+    }
+    EXPECT_NEAR
+    (
+        pythonValue(root, "print(e.hydrostaticPressure('e')[0])"), 0.01, 1e-12
+    );
+
+    // A body's vertical force 10 % above the reference run's at every
+    // time: relative RMS difference 0.1; the x column is not read
+    writeTable(root/"f", "body", {{0, 0, 0, 0, 0, 0, 0, 5, 100, 0}, {0.1, 0, 0, 0, 0, 0, 0, 5, 200, 0}});
+    writeTable(root/"g", "body", {{0, 9, 0, 0, 0, 0, 0, 7, 110, 0}, {0.1, 9, 0, 0, 0, 0, 0, 7, 220, 0}});
+    for (const char* run : {"f", "g"})
+    {
+        // The rigidBodyState header names the columns
+        const fs::path file = root/run/"postProcessing"/"body"/"0"/"body.dat";
+        std::string text = readText(file);
+        text.replace(0, text.find('\n'), "# Time\tx\ty\tangle\tu\tv\tomega\tFx\tFy\tMz");
+        std::ofstream(file) << text;
+    }
+    EXPECT_NEAR(pythonValue(root, "print(e.bodyForce('g', 'f')[0])"), 0.1, 1e-12);
+    EXPECT_EQ(pythonValue(root, "print(e.bodyForce('f', 'f')[0])"), 0);
+
     if (!HasFailure()) fs::remove_all(root);
 }
 
