@@ -227,14 +227,7 @@ def bodyForce(caseDir, finestDir):
     tF, yF = bodyCurve(finestDir) if finestDir else ([], [])
     if not t or not tF:
         return None, "", what
-    common = [(ti, yi) for ti, yi in zip(tF, yF) if t[0] <= ti <= t[-1]]
-    if not common:
-        return None, "", what
-    diff = sum((interpolate(ti, t, y) - yi)**2 for ti, yi in common)
-    norm = sum(yi**2 for ti, yi in common)
-    if norm == 0:
-        return (0.0 if diff == 0 else None), "", what
-    return math.sqrt(diff/norm), "", what
+    return relativeRmsDifference(t, y, tF, yF), "", what
 
 
 def finest(caseDir, finestDir):
@@ -243,14 +236,21 @@ def finest(caseDir, finestDir):
     what = "RMS difference from the reference run (%s), relative" % nameF
     if name is None or nameF is None or name != nameF:
         return None, "", what
+    return relativeRmsDifference(t, y, tF, yF), "", what
+
+
+def relativeRmsDifference(t, y, tF, yF):
+    """RMS of the curve (t, y), interpolated at the reference's times tF
+    that it covers, minus yF, over the RMS of yF there; None if it covers
+    none of them (0 if both are 0 there)."""
     common = [(ti, yi) for ti, yi in zip(tF, yF) if t[0] <= ti <= t[-1]]
     if not common:
-        return None, "", what
+        return None
     diff = sum((interpolate(ti, t, y) - yi)**2 for ti, yi in common)
     norm = sum(yi**2 for ti, yi in common)
     if norm == 0:
-        return (0.0 if diff == 0 else None), "", what
-    return math.sqrt(diff/norm), "", what
+        return 0.0 if diff == 0 else None
+    return math.sqrt(diff/norm)
 
 
 measures = {
