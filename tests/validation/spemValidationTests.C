@@ -892,6 +892,52 @@ TEST(SpemValidation, cylinderSinkingOpensNoVoidAtTheParticleBox)
 }
 
 
+// Not yet (issue 16): the write-to-write scatter of the cylinder's
+// vertical force (rigidBodyState, every 10 steps) while the cylinder is
+// under water and after T = V0 t/d = 0.1, as the RMS of the change from
+// one write to the next, below 10 % of rho g pi R^2 = 3141.6 N/m
+// (rho 1000, g 1, R 1). Measured at the default nx 8: cylinderSinking
+// (T 0.1-2) 917 N/m, 29 %; cylinderWaterExit (T 0.1-1, its centre under
+// the still water) 558 N/m, 18 %
+TEST(SpemValidation, DISABLED_cylinderForceScatterBelowTenPercentOfBuoyancy)
+{
+    const double d = 1.25, V0 = 0.39, buoyancy = 1000*1*M_PI;
+    for
+    (
+        const auto& [tutorial, Tend] :
+        {std::pair<std::string, double>{"cylinderSinking", 2.0}, {"cylinderWaterExit", 1.0}}
+    )
+    {
+        SCOPED_TRACE(tutorial);
+        const fs::path caseDir = copyTutorial(tutorial, "spemForceScatter" + tutorial);
+        ASSERT_TRUE(runCase(caseDir));
+        const std::vector<std::vector<double>> rows =
+            readTable(caseDir/"postProcessing/cylinder/0/cylinder.dat");
+        std::vector<double> Fy;
+        for (const auto& row : rows)
+        {
+            const double T = V0*row[0]/d;
+            if (T > 0.1 && T < Tend) Fy.push_back(row[8]);
+        }
+        ASSERT_GT(Fy.size(), 10u);
+        double sum2 = 0;
+        for (size_t k = 1; k < Fy.size(); ++k)
+        {
+            sum2 += (Fy[k] - Fy[k - 1])*(Fy[k] - Fy[k - 1]);
+        }
+        const double scatter = std::sqrt(sum2/(Fy.size() - 1));
+        std::printf
+        (
+            "%s: write-to-write scatter of Fy %.0f N/m, %.1f %% of"
+            " rho g pi R^2, over %zu writes\n",
+            tutorial.c_str(), scatter, 100*scatter/buoyancy, Fy.size()
+        );
+        EXPECT_LT(scatter, 0.1*buoyancy);
+        if (!::testing::Test::HasFailure()) fs::remove_all(caseDir);
+    }
+}
+
+
 TEST(SpemValidation, submergedCylinderFeelsArchimedesBuoyancy)
 {
     // Tank 0.5 m x 0.5 m of water at rest; a cylinder of radius 0.08 m
