@@ -53,22 +53,43 @@ def readTable(path):
     return rows
 
 
-def functionObjectRows(caseDir, name):
-    """Rows of postProcessing/<name>/<start>/*.dat of every start time,
-    sorted by time, a restart's rows replacing the earlier ones."""
+def functionObjectFiles(caseDir, name):
+    """(start time, path) of postProcessing/<name>/<start>/*.dat, the
+    first .dat of each start folder, by start time."""
     base = os.path.join(caseDir, "postProcessing", name)
     if not os.path.isdir(base):
         return []
-    rows = []
+    files = []
     for start in sorted(os.listdir(base), key=float):
         folder = os.path.join(base, start)
         for fileName in sorted(os.listdir(folder)):
             if fileName.endswith(".dat"):
-                t0 = float(start)
-                rows = [r for r in rows if r[0] < t0]
-                rows += readTable(os.path.join(folder, fileName))
+                files.append((float(start), os.path.join(folder, fileName)))
                 break
+    return files
+
+
+def functionObjectRows(caseDir, name):
+    """Rows of postProcessing/<name>/<start>/*.dat of every start time,
+    sorted by time, a restart's rows replacing the earlier ones."""
+    rows = []
+    for t0, path in functionObjectFiles(caseDir, name):
+        rows = [r for r in rows if r[0] < t0]
+        rows += readTable(path)
     return sorted(rows)
+
+
+def functionObjectHeader(caseDir, name):
+    """The leading '#' lines of the function object's first table, or []."""
+    files = functionObjectFiles(caseDir, name)
+    header = []
+    if files:
+        with open(files[0][1]) as f:
+            for line in f:
+                if not line.startswith("#"):
+                    break
+                header.append(line)
+    return header
 
 
 def interpolate(x, xs, ys):
@@ -183,20 +204,11 @@ def hydrostaticPressure(caseDir, finestDir=None, rho0=1000, g=9.81, H=0.5,
 def probeHeights(caseDir, name):
     """y of each probe of a pressureProbe table (its '# Probe k (x y)'
     header lines), or [] if the table has none."""
-    base = os.path.join(caseDir, "postProcessing", name)
     heights = []
-    for start in sorted(os.listdir(base)):
-        path = os.path.join(base, start, name + ".dat")
-        if not os.path.isfile(path):
-            continue
-        with open(path) as f:
-            for line in f:
-                if not line.startswith("#"):
-                    break
-                words = line.replace("(", " ").replace(")", " ").split()
-                if len(words) >= 5 and words[1] == "Probe":
-                    heights.append(float(words[4]))
-        break
+    for line in functionObjectHeader(caseDir, name):
+        words = line.replace("(", " ").replace(")", " ").split()
+        if len(words) >= 5 and words[1] == "Probe":
+            heights.append(float(words[4]))
     return heights
 
 
@@ -207,16 +219,12 @@ def bodyCurve(caseDir):
     if not os.path.isdir(base):
         return [], []
     for name in sorted(os.listdir(base)):
-        for start in sorted(os.listdir(os.path.join(base, name))):
-            path = os.path.join(base, name, start, name + ".dat")
-            if not os.path.isfile(path):
-                continue
-            with open(path) as f:
-                header = f.readline().split()
-            if "Fy" in header:
-                column = header.index("Fy") - 1
-                rows = functionObjectRows(caseDir, name)
-                return [r[0] for r in rows], [r[column] for r in rows]
+        header = functionObjectHeader(caseDir, name)
+        columns = header[0].split() if header else []
+        if "Fy" in columns:
+            column = columns.index("Fy") - 1
+            rows = functionObjectRows(caseDir, name)
+            return [r[0] for r in rows], [r[column] for r in rows]
     return [], []
 
 

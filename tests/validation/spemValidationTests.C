@@ -418,8 +418,11 @@ void particlesOnElementsColumn
     // less the particles' reaction to the elements). Measured: before the
     // elements' share of the wall dummies' pressure (sphFluid.H,
     // wallElementShare_) went to the elements, 11.98 and 12.07 N/m of
-    // 735.75 N/m (1.6 %); with it 0.38 and 0.47 N/m (0.06 %; on the
-    // walls 1.21-1.54 N/m, 0.16-0.21 %, with the three exact exchanges)
+    // 735.75 N/m (1.6 %); with it 0.38 and 0.47 N/m (0.05 and 0.06 %; on
+    // the walls 1.21-1.54 N/m, 0.16-0.21 %, with the three exact
+    // exchanges; multiResolutionSPEM 0.04 N/m). The bound, 0.1 %, is about
+    // twice the default's measured residue, which the one-way split of the
+    // cells leaves (the lattice of centroids has no inversion symmetry)
     const double weight = rho0*g*(H - yInterface)*H;
     const std::string log = testFiles::readText(caseDir/"log.spemFoam");
     const auto lastPair = [&](const std::string& name)
@@ -446,8 +449,8 @@ void particlesOnElementsColumn
         weight, walls.second, 100*walls.second/weight, imbalance.second,
         100*imbalance.second/weight
     );
-    EXPECT_LT(std::abs(walls.second), 0.005*weight);
-    EXPECT_LT(std::abs(imbalance.second), 0.005*weight);
+    EXPECT_LT(std::abs(walls.second), 0.001*weight);
+    EXPECT_LT(std::abs(imbalance.second), 0.001*weight);
 
     if (!::testing::Test::HasFailure()) fs::remove_all(caseDir);
 }
@@ -559,6 +562,29 @@ TEST(SpemValidation, damBreakElasticPlateWithParticlesOnlyBendsThePlate)
 namespace
 {
 
+//- The write folders of a function object's output folder (one per
+//  written time), by time
+std::vector<fs::path> writeFolders(const fs::path& dir)
+{
+    std::vector<fs::path> folders;
+    for (const auto& e : fs::directory_iterator(dir))
+    {
+        if (e.is_directory()) folders.push_back(e.path());
+    }
+    std::sort
+    (
+        folders.begin(), folders.end(),
+        [](const fs::path& a, const fs::path& b)
+        {
+            return
+                std::stod(a.filename().string())
+              < std::stod(b.filename().string());
+        }
+    );
+    return folders;
+}
+
+
 //- Run a dam-break tutorial (damBreak or damBreakElasticPlate, nx 20) to
 //  t = 0.25 s, before the surge reaches the far wall, with the given method
 //  and a free-surface profile every 0.025 s; the profile of each write, by
@@ -610,21 +636,13 @@ damBreakProfiles
     }
 
     std::vector<std::pair<double, std::vector<std::vector<double>>>> out;
-    const fs::path dir = caseDir/"postProcessing/surface/0";
-    for (const auto& e : fs::directory_iterator(dir))
+    for (const fs::path& w : writeFolders(caseDir/"postProcessing/surface/0"))
     {
-        if (!e.is_directory()) continue;
         out.emplace_back
         (
-            std::stod(e.path().filename().string()),
-            readTable(e.path()/"surface.dat")
+            std::stod(w.filename().string()), readTable(w/"surface.dat")
         );
     }
-    std::sort
-    (
-        out.begin(), out.end(),
-        [](const auto& a, const auto& b) { return a.first < b.first; }
-    );
     return out;
 }
 
@@ -789,15 +807,13 @@ TEST(SpemValidation, cylinderWaterExitOpensNoVoidAtTheParticleBox)
     );
     ASSERT_TRUE(runCase(caseDir));
     const double d = 1.25, V0 = 0.39, R = 1, dx = d/8;
-    const fs::path dir = caseDir/"postProcessing/freeSurface/0";
     int writes = 0;
-    for (const auto& e : fs::directory_iterator(dir))
+    for (const fs::path& w : writeFolders(caseDir/"postProcessing/freeSurface/0"))
     {
-        if (!e.is_directory()) continue;
-        const double t = std::stod(e.path().filename().string());
+        const double t = std::stod(w.filename().string());
         const double yCentre = -d + V0*t;
         double lowest = 0, xLowest = 0;
-        for (const auto& row : readTable(e.path()/"freeSurface.dat"))
+        for (const auto& row : readTable(w/"freeSurface.dat"))
         {
             if (std::hypot(row[0], row[1] - yCentre) < R + 2*dx) continue;
             if (row[1] < lowest)
@@ -836,22 +852,8 @@ TEST(SpemValidation, cylinderSinkingOpensNoVoidAtTheParticleBox)
         copyTutorial("cylinderSinking", "spemCylinderSinkingVoid");
     ASSERT_TRUE(runCase(caseDir));
     const double d = 1.25, V0 = 0.39, R = 1, dx = d/(8*std::sqrt(2.0));
-    const fs::path dir = caseDir/"postProcessing/freeSurface/0";
-    std::vector<fs::path> writeDirs;
-    for (const auto& e : fs::directory_iterator(dir))
-    {
-        if (e.is_directory()) writeDirs.push_back(e.path());
-    }
-    std::sort
-    (
-        writeDirs.begin(), writeDirs.end(),
-        [](const fs::path& a, const fs::path& b)
-        {
-            return std::stod(a.filename().string()) < std::stod(b.filename().string());
-        }
-    );
     int writes = 0;
-    for (const fs::path& w : writeDirs)
+    for (const fs::path& w : writeFolders(caseDir/"postProcessing/freeSurface/0"))
     {
         const std::string time = w.filename().string();
         const double t = std::stod(time);
