@@ -165,6 +165,152 @@ TEST(StructureParticleCoupling, virtualParticlesFillTheSolidBehindItsFacesAndNoM
 }
 
 
+TEST(StructureParticleCoupling, thinPlateOverAnOpenFaceGetsEveryLayerBehindIt)
+{
+    // A plate 0.04 m thick (one cell) under the water, its underside open
+    // (a free-surface patch): the layers at 0.5, 1.5 and 2.5 spacings
+    // (0.071 m) behind its top face reach 0.18 m below it. Those outside
+    // the plate stay tied to the element of their face, so that the
+    // particles above the plate see a full support of wall (a single
+    // layer let the column of method SPH sink into the plate's support:
+    // 35 % of its weight on hydrostaticElasticPlate at nx 20)
+    const scalar thickness = 0.04;
+    const Foam::triMesh mesh = testMeshes::build
+    (
+        {
+            {0, 1, 0, thickness, 10, 1, "plate"},
+            {0, 1, thickness, thickness + 0.4, 10, 4, "water"}
+        }
+    );
+    const auto elements =
+        testModels::model(mesh, {{"water", water}, {"plate", plate}});
+    const scalar spacing = std::sqrt(0.005);
+    const label nLayers = 3;
+    const label plateRegion = mesh.findRegion("plate");
+    const std::vector<scalar>& X = mesh.points();
+
+    // Reference position of virtual particle k from its element's nodes
+    // at (x, y) = (c X - s Y + tx, s X + c Y + ty)
+    auto position = [&]
+    (
+        const Foam::structureParticleCoupling& coupling,
+        const label k,
+        const scalar c,
+        const scalar sn,
+        scalar& px,
+        scalar& py
+    )
+    {
+        const label t = coupling.triangle(k);
+        const scalar* w = coupling.weights(k);
+        px = 0;
+        py = 0;
+        for (label a = 0; a < 3; ++a)
+        {
+            const label n = mesh.triangles()[3*t + a];
+            px += w[a]*(c*X[2*n] - sn*X[2*n + 1] + 0.1);
+            py += w[a]*(sn*X[2*n] + c*X[2*n + 1] - 0.2);
+        }
+    };
+
+    const Foam::structureParticleCoupling open
+    (
+        mesh, *elements, testModels::patchTypes(mesh, {}), spacing, nLayers,
+        1000, 1.3*spacing
+    );
+    std::vector<scalar> x(2*open.size());
+    label below = 0;
+    for (label k = 0; k < open.size(); ++k)
+    {
+        EXPECT_EQ(mesh.triangleRegion()[open.triangle(k)], plateRegion) << k;
+        const scalar* w = open.weights(k);
+        EXPECT_NEAR(w[0] + w[1] + w[2], 1, 1e-12);
+        position(open, k, 1, 0, x[2*k], x[2*k + 1]);
+        x[2*k] -= 0.1;
+        x[2*k + 1] += 0.2;
+        // Never in the water
+        EXPECT_LT(x[2*k + 1], thickness) << k;
+        if (x[2*k + 1] < 0) ++below;
+    }
+    EXPECT_GT(below, 0) << "no layer behind the plate";
+
+    // Every point of the band of nLayers spacings below the top face
+    // (away from the plate's ends) within 0.75 spacing of one
+    scalar worst = 0;
+    for (scalar px = 0.1; px < 0.9; px += 0.01)
+    {
+        for (scalar py = thickness - 0.005; py > thickness - nLayers*spacing; py -= 0.01)
+        {
+            scalar nearest = 1;
+            for (label k = 0; k < open.size(); ++k)
+            {
+                nearest = std::min
+                (
+                    nearest, std::hypot(x[2*k] - px, x[2*k + 1] - py)
+                );
+            }
+            worst = std::max(worst, nearest);
+        }
+    }
+    std::cout << open.size() << " virtual particles, " << below
+        << " below the plate; farthest point of the band from one "
+        << worst << std::endl;
+    EXPECT_LT(worst, 0.75*spacing);
+
+    // They move with the plate: a rigid rotation by 30 deg and a
+    // translation, extrapolated exactly
+    {
+        const scalar c = std::cos(M_PI/6), sn = std::sin(M_PI/6);
+        std::vector<scalar> nodes(X.size()), v(X.size(), 0);
+        for (size_t n = 0; n < X.size()/2; ++n)
+        {
+            nodes[2*n] = c*X[2*n] - sn*X[2*n + 1] + 0.1;
+            nodes[2*n + 1] = sn*X[2*n] + c*X[2*n + 1] - 0.2;
+        }
+        auto moved =
+            testModels::model(mesh, {{"water", water}, {"plate", plate}});
+        moved->setState(nodes, v);
+        Foam::structureParticleCoupling coupling
+        (
+            mesh, *elements, testModels::patchTypes(mesh, {}), spacing,
+            nLayers, 1000, 1.3*spacing
+        );
+        std::vector<scalar> px, pv, pa, pm, ph;
+        coupling.appendParticles(*moved, 0, px, pv, pa, pm, ph);
+        scalar worstX = 0;
+        for (label k = 0; k < coupling.size(); ++k)
+        {
+            scalar rx, ry;
+            position(coupling, k, c, sn, rx, ry);
+            worstX = std::max
+            (
+                worstX, std::hypot(px[2*k] - rx, px[2*k + 1] - ry)
+            );
+        }
+        EXPECT_LT(worstX, 1e-13);
+    }
+
+    // Under a wall, whose own dummy particles stand behind it: none
+    // outside the plate
+    const Foam::structureParticleCoupling onWall
+    (
+        mesh, *elements,
+        testModels::patchTypes
+        (
+            mesh, {{"bottom", Foam::patchType::noSlipWall}}
+        ),
+        spacing, nLayers, 1000, 1.3*spacing
+    );
+    ASSERT_GT(onWall.size(), 0);
+    for (label k = 0; k < onWall.size(); ++k)
+    {
+        scalar px, py;
+        position(onWall, k, 1, 0, px, py);
+        EXPECT_GE(py + 0.2, -1e-12) << k;
+    }
+}
+
+
 TEST(StructureParticleCoupling, virtualParticlesMoveWithTheSolid)
 {
     scene s;

@@ -3861,17 +3861,54 @@ TEST_F(Solver, outOfRangeSphValueStops)
 }
 
 
-TEST_F(Solver, initialRelaxationWithElementsStops)
+TEST_F(Solver, initialRelaxationWithElementsWarnsAndRuns)
 {
-    // The relaxation moves particles only: with elements (method SPEM)
-    // it would leave the element-particle interface, so it is refused
+    // The relaxation moves particles only, so method SPEM does not use it
+    // (it would leave the element-particle interface), and says so, naming
+    // the file: a tutorial that sets it for method SPH still runs when a
+    // user switches the method
     schemes_ = "method          SPEM;\nsph\n{\n    initialRelaxation 10;\n}\n";
-    const std::string text = runExpectingFatalError();
+    setControl("endTime", "0.01");
+    const std::string text = runExpectingSuccess();
     expectInLog
     (
-        text, {"FATAL IO ERROR", "sph/initialRelaxation", "system/spemSchemes"}
+        text,
+        {
+            "Warning", "system/spemSchemes", "sph/initialRelaxation 10",
+            "method SPH only"
+        }
     );
-    EXPECT_FALSE(contains(text, "Starting time loop")) << text;
+    EXPECT_FALSE(contains(text, "initial relaxation:")) << text;
+}
+
+
+TEST_F(Solver, initialRelaxationOfMethodSPHSeesThePlateAsAWall)
+{
+    // Method SPH with a solid: the plate's virtual particles stand where
+    // the first step puts them while the particles relax, so that none
+    // relaxes into the plate
+    addPlate();
+    schemes_ = "method          SPH;\nsph\n{\n    initialRelaxation 50;\n}\n";
+    setControl("subCycling", "on");
+    setControl("endTime", "0.002");
+    const std::string text = runExpectingSuccess();
+    if (HasFailure()) return;
+    expectInLog
+    (
+        text,
+        {
+            "initial relaxation: 50 iterations",
+            "particles of structures and bodies as walls"
+        }
+    );
+    // Every particle stays above the plate's top face (y = 0)
+    const auto x =
+        readStateField<Foam::vectorIOField>("0", "particlePositions", caseDir_);
+    ASSERT_GT(x.size(), 0);
+    double lowest = 1;
+    for (const auto& p : x) lowest = std::min(lowest, double(p.y()));
+    std::cout << "lowest relaxed particle at y = " << lowest << std::endl;
+    EXPECT_GT(lowest, 0);
 }
 
 

@@ -59,24 +59,26 @@ namespace
     }
 
 
-    //- The solid triangles, their largest edge length and the lower left
-    //  corner of their bounding box
-    struct solidTriangles
+    //- Triangles of the mesh (the solid ones, or all), their largest edge
+    //  length and the lower left corner of their bounding box
+    struct triangleSet
     {
         std::vector<label> triangles;
         scalar edgeMax = 0, xMin = Foam::GREAT, yMin = Foam::GREAT;
 
-        solidTriangles
+        //- The solid triangles, or (solidOnly false) every triangle
+        triangleSet
         (
             const Foam::triMesh& mesh,
-            const Foam::elementModel& elements
+            const Foam::elementModel& elements,
+            const bool solidOnly = true
         )
         {
             const std::vector<scalar>& X = mesh.points();
             const std::vector<label>& tri = mesh.triangles();
             for (label t = 0; t < mesh.nTriangles(); ++t)
             {
-                if (!isSolid(mesh, elements, t)) continue;
+                if (solidOnly && !isSolid(mesh, elements, t)) continue;
                 triangles.push_back(t);
                 for (label a = 0; a < 3; ++a)
                 {
@@ -94,9 +96,30 @@ namespace
     };
 
 
-    //- Point location among the solid triangles, in buckets of the largest
-    //  solid edge length
-    class solidLocator
+    //- Barycentric coordinates of a point in triangle t (outside it some
+    //  are negative: a linear extrapolation of the triangle's field)
+    void barycentric
+    (
+        const std::vector<scalar>& X,
+        const label* n,
+        const scalar px,
+        const scalar py,
+        scalar lambda[3]
+    )
+    {
+        const scalar x0 = X[2*n[0]], y0 = X[2*n[0] + 1];
+        const scalar x1 = X[2*n[1]], y1 = X[2*n[1] + 1];
+        const scalar x2 = X[2*n[2]], y2 = X[2*n[2] + 1];
+        const scalar det = (x1 - x0)*(y2 - y0) - (x2 - x0)*(y1 - y0);
+        lambda[1] = ((px - x0)*(y2 - y0) - (x2 - x0)*(py - y0))/det;
+        lambda[2] = ((x1 - x0)*(py - y0) - (px - x0)*(y1 - y0))/det;
+        lambda[0] = 1 - lambda[1] - lambda[2];
+    }
+
+
+    //- Point location among some triangles of the mesh (the solid ones, or
+    //  all), in buckets of their largest edge length
+    class triangleLocator
     {
         const std::vector<scalar>& X_;
         const std::vector<label>& tri_;
@@ -104,7 +127,7 @@ namespace
 
     public:
 
-        solidLocator(const Foam::triMesh& mesh, const solidTriangles& solid)
+        triangleLocator(const Foam::triMesh& mesh, const triangleSet& solid)
         :
             X_(mesh.points()),
             tri_(mesh.triangles()),
@@ -139,20 +162,10 @@ namespace
             if (!cell) return label(-1);
             for (const label t : *cell)
             {
-                const label* n = &tri_[3*t];
-                const scalar x0 = X[2*n[0]], y0 = X[2*n[0] + 1];
-                const scalar x1 = X[2*n[1]], y1 = X[2*n[1] + 1];
-                const scalar x2 = X[2*n[2]], y2 = X[2*n[2] + 1];
-                const scalar det = (x1 - x0)*(y2 - y0) - (x2 - x0)*(y1 - y0);
-                const scalar l1 = ((px - x0)*(y2 - y0) - (x2 - x0)*(py - y0))/det;
-                const scalar l2 = ((x1 - x0)*(py - y0) - (px - x0)*(y1 - y0))/det;
-                const scalar l0 = 1 - l1 - l2;
+                barycentric(X, &tri_[3*t], px, py, lambda);
                 const scalar tol = 1e-12;
-                if (l0 >= -tol && l1 >= -tol && l2 >= -tol)
+                if (lambda[0] >= -tol && lambda[1] >= -tol && lambda[2] >= -tol)
                 {
-                    lambda[0] = l0;
-                    lambda[1] = l1;
-                    lambda[2] = l2;
                     return t;
                 }
             }
@@ -161,8 +174,8 @@ namespace
     };
 
 
-    //- The solid segments that fluid can reach, as pairs first node, second
-    //  node (the solid on their left)
+    //- The solid segments that fluid can reach, as triples first node,
+    //  second node (the solid on their left), solid triangle
     std::vector<label> reachableSegments
     (
         const Foam::triMesh& mesh,
@@ -182,25 +195,74 @@ namespace
             edgePatch[mesh.segmentEdge()[s]] = mesh.segmentPatch()[s];
         }
 
+        // The faces next to fluid or void elements first, then those on
+        // open patches: where the layers of two faces of a thin plate
+        // overlap, the face the water touches keeps its first layer
         std::vector<label> segments;
-        for (const label t : solidTriangles)
+        for (const bool onPatch : {false, true})
         {
-            for (label a = 0; a < 3; ++a)
+            for (const label t : solidTriangles)
             {
-                const label k = triEdges[3*t + a];
-                const label other = edgeTri[2*k] == t ? edgeTri[2*k + 1] : edgeTri[2*k];
-                const bool reachable =
-                    other >= 0
-                  ? !isSolid(mesh, elements, other)
-                  : patchTypes[edgePatch[k]] == Foam::patchType::freeSurface;
-                if (!reachable) continue;
-                // Edge a runs from local node a to a + 1 of the counter-
-                // clockwise triangle
-                segments.push_back(tri[3*t + a]);
-                segments.push_back(tri[3*t + (a + 1) % 3]);
+                for (label a = 0; a < 3; ++a)
+                {
+                    const label k = triEdges[3*t + a];
+                    const label other =
+                        edgeTri[2*k] == t ? edgeTri[2*k + 1] : edgeTri[2*k];
+                    if ((other < 0) != onPatch) continue;
+                    const bool reachable =
+                        other >= 0
+                      ? !isSolid(mesh, elements, other)
+                      : patchTypes[edgePatch[k]] == Foam::patchType::freeSurface;
+                    if (!reachable) continue;
+                    // Edge a runs from local node a to a + 1 of the
+                    // counter-clockwise triangle
+                    segments.push_back(tri[3*t + a]);
+                    segments.push_back(tri[3*t + (a + 1) % 3]);
+                    segments.push_back(t);
+                }
             }
         }
         return segments;
+    }
+
+
+    //- True if the boundary segment of the mesh nearest to (px, py), a
+    //  point outside the mesh, is of a free-surface patch: the point lies
+    //  beyond an open face (a thin plate's underside), not behind a wall,
+    //  whose own dummy particles are there already
+    bool beyondOpenPatch
+    (
+        const Foam::triMesh& mesh,
+        const Foam::List<Foam::patchType>& patchTypes,
+        const scalar px,
+        const scalar py
+    )
+    {
+        const std::vector<scalar>& X = mesh.points();
+        const std::vector<label>& seg = mesh.segments();
+        scalar nearest = Foam::GREAT;
+        label patch = -1;
+        for (label s = 0; s < mesh.nSegments(); ++s)
+        {
+            const scalar ax = X[2*seg[2*s]], ay = X[2*seg[2*s] + 1];
+            const scalar ex = X[2*seg[2*s + 1]] - ax;
+            const scalar ey = X[2*seg[2*s + 1] + 1] - ay;
+            const scalar u = std::min
+            (
+                scalar(1),
+                std::max
+                (
+                    scalar(0), ((px - ax)*ex + (py - ay)*ey)/(ex*ex + ey*ey)
+                )
+            );
+            const scalar d = std::hypot(ax + u*ex - px, ay + u*ey - py);
+            if (d < nearest)
+            {
+                nearest = d;
+                patch = mesh.segmentPatch()[s];
+            }
+        }
+        return patch >= 0 && patchTypes[patch] == Foam::patchType::freeSurface;
     }
 
 
@@ -258,11 +320,15 @@ Foam::structureParticleCoupling::structureParticleCoupling
     const std::vector<scalar>& X = mesh.points();
     const std::vector<label>& tri = mesh.triangles();
 
-    const solidTriangles solid(mesh, elements);
+    const triangleSet solid(mesh, elements);
     if (solid.triangles.empty() || spacing <= 0 || nLayers <= 0) return;
     const scalar xMin = solid.xMin, yMin = solid.yMin;
 
-    const solidLocator locator(mesh, solid);
+    const triangleLocator locator(mesh, solid);
+    const triangleLocator anyTriangle
+    (
+        mesh, triangleSet(mesh, elements, false)
+    );
     const std::vector<label> segments =
         reachableSegments(mesh, elements, patchTypes, solid.triangles);
 
@@ -277,10 +343,11 @@ Foam::structureParticleCoupling::structureParticleCoupling
     for (label layer = 0; layer < nLayers; ++layer)
     {
         const scalar depth = (layer + 0.5)*spacing;
-        for (size_t seg = 0; seg < segments.size(); seg += 2)
+        for (size_t seg = 0; seg < segments.size(); seg += 3)
         {
             const label p = segments[seg];
             const label q = segments[seg + 1];
+            const label own = segments[seg + 2];
             const scalar ex = X[2*q] - X[2*p], ey = X[2*q + 1] - X[2*p + 1];
             const scalar length = std::hypot(ex, ey);
             const scalar nx = -ey/length, ny = ex/length;
@@ -300,8 +367,24 @@ Foam::structureParticleCoupling::structureParticleCoupling
                     const scalar px = X[2*p] + u*ex + depth*nx;
                     const scalar py = X[2*p + 1] + u*ey + depth*ny;
                     scalar lambda[3];
-                    const label holder = locator.locate(px, py, lambda);
-                    if (holder < 0) continue;
+                    label holder = locator.locate(px, py, lambda);
+                    if (holder < 0)
+                    {
+                        // Behind a solid thinner than the layers, outside
+                        // the mesh beyond an open face (where no fluid
+                        // is): tied to the segment's element, extrapolated
+                        scalar unused[3];
+                        if
+                        (
+                            anyTriangle.locate(px, py, unused) >= 0
+                         || !beyondOpenPatch(mesh, patchTypes, px, py)
+                        )
+                        {
+                            continue;
+                        }
+                        holder = own;
+                        barycentric(X, &tri[3*own], px, py, lambda);
+                    }
 
                     if (tooClose(kept, keptX, px, py, minDistance)) continue;
 

@@ -416,7 +416,7 @@ Foam::spemMethods::SPEM::SPEM
             c.mesh, c.patchTypes, materials, c.properties.subDict("regions"),
             c.g[0], c.g[1]
         );
-    refuseInitialRelaxation();
+    ignoreInitialRelaxation();
     createElementHalf(materials, density);
 
     // The water a body displaces at t = 0 is not there

@@ -142,13 +142,7 @@ void Foam::spemMethods::SPH::buildParticles
 
     // Initial relaxation of the barycentres (sphFluid.H), once, at t = 0;
     // a restart reads the relaxed positions
-    if (ctrl.initialRelaxation > 0 && !restart)
-    {
-        const scalar lastShift = particles_->relax(ctrl.initialRelaxation);
-        Info<< "    initial relaxation: " << ctrl.initialRelaxation
-            << " iterations, last shift at most " << lastShift
-            << " smoothing lengths" << nl;
-    }
+    if (!restart) relaxInitialParticles();
 }
 
 
@@ -170,14 +164,12 @@ Foam::spemMethods::SPH::SPH
         );
     if (!anySolid(materials))
     {
-        if (!c.bodies.empty()) refuseInitialRelaxation();
         buildParticles(materials, density);
         return;
     }
 
     // Solids are elements: the fluid elements become particles at t = 0
     // and couple to them (eq. 27)
-    refuseInitialRelaxation();
     createElementHalf(materials, density);
     const std::vector<label> inside = trianglesInsideBodies();
     if (!inside.empty())
@@ -200,6 +192,8 @@ Foam::spemMethods::SPH::SPH
         convert(all);
         Info<< "    " << all.size()
             << " fluid elements became particles at t = 0" << nl;
+        // Once, at t = 0 (sphFluid.H); a restart reads the relaxed state
+        relaxInitialParticles();
     }
 }
 

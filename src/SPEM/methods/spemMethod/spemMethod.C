@@ -470,18 +470,53 @@ bool Foam::spemMethod::anySolid(const PtrList<spemMaterial>& materials)
 }
 
 
-void Foam::spemMethod::refuseInitialRelaxation() const
+void Foam::spemMethod::ignoreInitialRelaxation() const
 {
-    // The relaxation sees fluid and wall particles only: neither elements
-    // nor the rigid bodies' dummy particles, which are placed after it
-    if (sphFluid::controls::read(case_.schemes).initialRelaxation > 0)
+    // The relaxation moves particles, not elements: with fluid elements
+    // the ghosts and the interface would have to move with it. Not an
+    // error: a tutorial that needs it with method SPH keeps the entry
+    // when a user switches it to SPEM
+    const label iterations =
+        sphFluid::controls::read(case_.schemes).initialRelaxation;
+    if (iterations > 0)
     {
-        FatalIOErrorInFunction(case_.schemes)
-            << "sph/initialRelaxation relaxes the particles of method SPH"
-            << " without solids or rigid bodies; with elements (method SPEM,"
-            << " solid regions) or constant/rigidBodyProperties set it to 0"
-            << exit(FatalIOError);
+        IOWarningInFunction(case_.schemes)
+            << "sph/initialRelaxation " << iterations << " relaxes the"
+            << " particles of method SPH only; method "
+            << case_.schemes.get<word>("method")
+            << " starts from the elements' barycentres without it" << endl;
     }
+}
+
+
+void Foam::spemMethod::relaxInitialParticles()
+{
+    const label iterations =
+        sphFluid::controls::read(case_.schemes).initialRelaxation;
+    if (iterations <= 0 || !particles_) return;
+
+    // The structures' and bodies' particles where the first step puts
+    // them: the relaxation's grad C sees them as it sees the tank's walls
+    structure_.clear();
+    callHooks(&spemCoupling::beforeParticleEvaluate);
+    if (structure_.size() > 0)
+    {
+        particles_->setStructureParticles
+        (
+            structure_.size(), structure_.x.data(), structure_.v.data(),
+            structure_.a.data(), structure_.m.data(), structure_.h.data()
+        );
+    }
+    const scalar lastShift = particles_->relax(iterations);
+    Info<< "    initial relaxation: " << iterations
+        << " iterations, last shift at most " << lastShift
+        << " smoothing lengths";
+    if (structure_.size() > 0)
+    {
+        Info<< " (with " << structure_.size()
+            << " particles of structures and bodies as walls)";
+    }
+    Info<< nl;
 }
 
 
