@@ -311,6 +311,44 @@ TEST(StructureParticleCoupling, thinPlateOverAnOpenFaceGetsEveryLayerBehindIt)
 }
 
 
+TEST(WallAcceleration, lowPassKeepsASteadyAccelerationAndDropsStepToStepNoise)
+{
+    // A wall accelerating at a0 whose velocity also flips by +-eps from
+    // step to step (the lagged structure-fluid loop): unsmoothed, the
+    // acceleration given out swings by 2 eps/dt about a0 on alternate
+    // steps; low-passed over tau = 100 dt, by at most 2 eps/dt x dt/tau
+    // in the steady state, and a0 is kept
+    const scalar dt = 1e-5, a0 = -3, eps = 1e-4, tau = 100*dt;
+    Foam::wallAcceleration raw, smooth;
+    raw.resize(1);
+    smooth.resize(1);
+    smooth.setSmoothingTime(tau);
+    scalar swingRaw = 0, swingSmooth = 0, meanSmooth = 0;
+    const label nSteps = 4000, nLast = 1000;
+    for (label n = 0; n < nSteps; ++n)
+    {
+        const scalar v = a0*n*dt + (n % 2 ? eps : -eps);
+        scalar ax, ay, sx, sy;
+        raw.update(0, 0, v, n ? dt : 0, ax, ay);
+        raw.endUpdate();
+        smooth.update(0, 0, v, n ? dt : 0, sx, sy);
+        smooth.endUpdate();
+        if (n >= nSteps - nLast)
+        {
+            swingRaw = std::max(swingRaw, std::abs(ay - a0));
+            swingSmooth = std::max(swingSmooth, std::abs(sy - a0));
+            meanSmooth += sy/nLast;
+        }
+    }
+    std::cout << "swing about a0: raw " << swingRaw << ", low-passed "
+        << swingSmooth << " m/s2; low-passed mean " << meanSmooth
+        << std::endl;
+    EXPECT_NEAR(swingRaw, 2*eps/dt, 1e-6*eps/dt);
+    EXPECT_LT(swingSmooth, 2*eps/dt*dt/tau*1.01);
+    EXPECT_NEAR(meanSmooth, a0, 1e-3*std::abs(a0));
+}
+
+
 TEST(StructureParticleCoupling, virtualParticlesMoveWithTheSolid)
 {
     scene s;

@@ -143,7 +143,7 @@ void Foam::spemMethod::createParticleHalf
       ? elements_->previousDeltaT()
       : case_.restart.readPreviousDeltaT()
     );
-    createStructureCouplings(fluid.rho(), spacing, layers, h);
+    createStructureCouplings(fluid.rho(), fluid.c(), spacing, layers, h);
 
     if (!rhoOld.empty())
     {
@@ -180,6 +180,7 @@ void Foam::spemMethod::createParticleHalf
 void Foam::spemMethod::createStructureCouplings
 (
     const scalar rho0,
+    const scalar c,
     const scalar spacing,
     const label layers,
     const scalar h
@@ -218,9 +219,14 @@ void Foam::spemMethod::createStructureCouplings
         }
         else
         {
+            // The wall pressure's a_w without the step-to-step noise of
+            // the lagged structure-fluid loop (wallAcceleration.H): motions
+            // slower than the time sound takes to cross h are kept
+            structureCoupling_->acceleration().setSmoothingTime(h/c);
             Info<< "    structure-particle coupling: "
                 << structureCoupling_->size()
-                << " virtual particles in the solid regions" << nl;
+                << " virtual particles in the solid regions, accelerations"
+                << " smoothed over h/c = " << h/c << " s" << nl;
             case_.restart.readAcceleration
             (
                 "virtualParticle", structureCoupling_->acceleration()
