@@ -220,13 +220,15 @@ void Foam::spemMethod::createStructureCouplings
         else
         {
             // The wall pressure's a_w without the step-to-step noise of
-            // the lagged structure-fluid loop (wallAcceleration.H): motions
-            // slower than the time sound takes to cross h are kept
-            structureCoupling_->acceleration().setSmoothingTime(h/c);
+            // the lagged structure-fluid loop (wallAcceleration.H): over
+            // ten times the time sound takes to cross h, i.e. at least ten
+            // fluid steps (maxCo <= 1), also when the solids sub-cycle
+            const scalar tau = 10*h/c;
+            structureCoupling_->acceleration().setSmoothingTime(tau);
             Info<< "    structure-particle coupling: "
                 << structureCoupling_->size()
                 << " virtual particles in the solid regions, accelerations"
-                << " smoothed over h/c = " << h/c << " s" << nl;
+                << " smoothed over 10 h/c = " << tau << " s" << nl;
             case_.restart.readAcceleration
             (
                 "virtualParticle", structureCoupling_->acceleration()
