@@ -403,8 +403,11 @@ const std::vector<extremeCase> cases
     {"plate_maxCo3", "damBreakElasticPlate", 20, 0.25,
         {{controlDict, "maxCo", "3"}}, courantRefusal, {}, false},
     // Ten times the gravity: the surge (Mach 0.3) splashes over the side
-    // wall, which stops the run (tank leaving stop, the default)
-    {"plate_g10", "damBreakElasticPlate", 20, 0.25,
+    // wall, which stops the run (tank leaving stop, the default) when the
+    // splash comes down beside the tank: at 0.297 s since the plate's a_w
+    // is smoothed (at 0.25 s the splash is still in the air, up to 2.9 m;
+    // with the raw a_w it fell out before 0.25 s), so run to 0.5 s
+    {"plate_g10", "damBreakElasticPlate", 20, 0.5,
         {{gravity, "value", "(0 -98.1 0)"}},
         {"outside the tank", "close it with walls", "The last good state"},
         {machWarning}, false},
