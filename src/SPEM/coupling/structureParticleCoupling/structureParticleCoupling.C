@@ -1,6 +1,7 @@
 #include "structureParticleCoupling.H"
 #include "elementModel.H"
 #include "sphFluid.H"
+#include "tankBoundary.H"
 
 #include <algorithm>
 #include <cmath>
@@ -59,26 +60,24 @@ namespace
     }
 
 
-    //- Triangles of the mesh (the solid ones, or all), their largest edge
-    //  length and the lower left corner of their bounding box
-    struct triangleSet
+    //- The solid triangles, their largest edge length and the lower left
+    //  corner of their bounding box
+    struct solidTriangles
     {
         std::vector<label> triangles;
         scalar edgeMax = 0, xMin = Foam::GREAT, yMin = Foam::GREAT;
 
-        //- The solid triangles, or (solidOnly false) every triangle
-        triangleSet
+        solidTriangles
         (
             const Foam::triMesh& mesh,
-            const Foam::elementModel& elements,
-            const bool solidOnly = true
+            const Foam::elementModel& elements
         )
         {
             const std::vector<scalar>& X = mesh.points();
             const std::vector<label>& tri = mesh.triangles();
             for (label t = 0; t < mesh.nTriangles(); ++t)
             {
-                if (solidOnly && !isSolid(mesh, elements, t)) continue;
+                if (!isSolid(mesh, elements, t)) continue;
                 triangles.push_back(t);
                 for (label a = 0; a < 3; ++a)
                 {
@@ -117,9 +116,9 @@ namespace
     }
 
 
-    //- Point location among some triangles of the mesh (the solid ones, or
-    //  all), in buckets of their largest edge length
-    class triangleLocator
+    //- Point location among the solid triangles, in buckets of the largest
+    //  solid edge length
+    class solidLocator
     {
         const std::vector<scalar>& X_;
         const std::vector<label>& tri_;
@@ -127,7 +126,7 @@ namespace
 
     public:
 
-        triangleLocator(const Foam::triMesh& mesh, const triangleSet& solid)
+        solidLocator(const Foam::triMesh& mesh, const solidTriangles& solid)
         :
             X_(mesh.points()),
             tri_(mesh.triangles()),
@@ -226,46 +225,6 @@ namespace
     }
 
 
-    //- True if the boundary segment of the mesh nearest to (px, py), a
-    //  point outside the mesh, is of a free-surface patch: the point lies
-    //  beyond an open face (a thin plate's underside), not behind a wall,
-    //  whose own dummy particles are there already
-    bool beyondOpenPatch
-    (
-        const Foam::triMesh& mesh,
-        const Foam::List<Foam::patchType>& patchTypes,
-        const scalar px,
-        const scalar py
-    )
-    {
-        const std::vector<scalar>& X = mesh.points();
-        const std::vector<label>& seg = mesh.segments();
-        scalar nearest = Foam::GREAT;
-        label patch = -1;
-        for (label s = 0; s < mesh.nSegments(); ++s)
-        {
-            const scalar ax = X[2*seg[2*s]], ay = X[2*seg[2*s] + 1];
-            const scalar ex = X[2*seg[2*s + 1]] - ax;
-            const scalar ey = X[2*seg[2*s + 1] + 1] - ay;
-            const scalar u = std::min
-            (
-                scalar(1),
-                std::max
-                (
-                    scalar(0), ((px - ax)*ex + (py - ay)*ey)/(ex*ex + ey*ey)
-                )
-            );
-            const scalar d = std::hypot(ax + u*ex - px, ay + u*ey - py);
-            if (d < nearest)
-            {
-                nearest = d;
-                patch = mesh.segmentPatch()[s];
-            }
-        }
-        return patch >= 0 && patchTypes[patch] == Foam::patchType::freeSurface;
-    }
-
-
     //- True if a particle kept before is closer than minDistance to (px, py)
     bool tooClose
     (
@@ -320,15 +279,14 @@ Foam::structureParticleCoupling::structureParticleCoupling
     const std::vector<scalar>& X = mesh.points();
     const std::vector<label>& tri = mesh.triangles();
 
-    const triangleSet solid(mesh, elements);
+    const solidTriangles solid(mesh, elements);
     if (solid.triangles.empty() || spacing <= 0 || nLayers <= 0) return;
     const scalar xMin = solid.xMin, yMin = solid.yMin;
 
-    const triangleLocator locator(mesh, solid);
-    const triangleLocator anyTriangle
-    (
-        mesh, triangleSet(mesh, elements, false)
-    );
+    const solidLocator locator(mesh, solid);
+    // Where a layer that leaves the solid may go on: outside the mesh
+    // beyond an open face, within the layers' depth of it
+    const tankBoundary tank(mesh, patchTypes, nLayers*spacing);
     const std::vector<label> segments =
         reachableSegments(mesh, elements, patchTypes, solid.triangles);
 
@@ -373,11 +331,11 @@ Foam::structureParticleCoupling::structureParticleCoupling
                         // Behind a solid thinner than the layers, outside
                         // the mesh beyond an open face (where no fluid
                         // is): tied to the segment's element, extrapolated
-                        scalar unused[3];
+                        tankBoundary::nearestPoint q;
                         if
                         (
-                            anyTriangle.locate(px, py, unused) >= 0
-                         || !beyondOpenPatch(mesh, patchTypes, px, py)
+                            !tank.nearest(px, py, q)
+                         || q.wall || q.signedDistance <= 0
                         )
                         {
                             continue;

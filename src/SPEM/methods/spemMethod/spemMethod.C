@@ -497,6 +497,22 @@ void Foam::spemMethod::ignoreInitialRelaxation() const
 }
 
 
+void Foam::spemMethod::placeStructureParticles()
+{
+    structure_.clear();
+    callHooks(&spemCoupling::beforeParticleEvaluate);
+    if (structure_.size() > 0)
+    {
+        const costBreakdown::scope timed(cost_, costBreakdown::particles);
+        particles_->setStructureParticles
+        (
+            structure_.size(), structure_.x.data(), structure_.v.data(),
+            structure_.a.data(), structure_.m.data(), structure_.h.data()
+        );
+    }
+}
+
+
 void Foam::spemMethod::relaxInitialParticles()
 {
     const label iterations =
@@ -505,16 +521,7 @@ void Foam::spemMethod::relaxInitialParticles()
 
     // The structures' and bodies' particles where the first step puts
     // them: the relaxation's grad C sees them as it sees the tank's walls
-    structure_.clear();
-    callHooks(&spemCoupling::beforeParticleEvaluate);
-    if (structure_.size() > 0)
-    {
-        particles_->setStructureParticles
-        (
-            structure_.size(), structure_.x.data(), structure_.v.data(),
-            structure_.a.data(), structure_.m.data(), structure_.h.data()
-        );
-    }
+    placeStructureParticles();
     const scalar lastShift = particles_->relax(iterations);
     Info<< "    initial relaxation: " << iterations
         << " iterations, last shift at most " << lastShift
@@ -771,17 +778,8 @@ bool Foam::spemMethod::evaluate()
         return true;
     }
 
-    structure_.clear();
-    callHooks(&spemCoupling::beforeParticleEvaluate);
+    placeStructureParticles();
     const costBreakdown::scope timed(cost_, costBreakdown::particles);
-    if (structure_.size() > 0)
-    {
-        particles_->setStructureParticles
-        (
-            structure_.size(), structure_.x.data(), structure_.v.data(),
-            structure_.a.data(), structure_.m.data(), structure_.h.data()
-        );
-    }
     if (!particles_->evaluate())
     {
         // A particle that leaves faster than sound was thrown out by a
