@@ -1,10 +1,11 @@
 /*---------------------------------------------------------------------------*\
 Description
     spemStudy (bin/spemStudy) end to end: a two-run study of damBreak (SPH
-    and SPEM, nx 5, 0.1 s) writes a CSV whose steps, counts and CPU times
-    are the runs' own (read back from their logs), resumes without redoing
-    a finished run, and its error measures give zero on a run compared
-    with itself and the right value on synthetic curves.
+    and SPEM, nx 5, 0.1 s, each with an entry of its own) writes a CSV
+    whose steps, counts and CPU times are the runs' own (read back from
+    their logs), resumes without redoing a finished run, and its error
+    measures give zero on a run compared with itself and the right value
+    on synthetic curves.
 
 \*---------------------------------------------------------------------------*/
 
@@ -13,6 +14,7 @@ Description
 
 #include <gtest/gtest.h>
 
+#include <cctype>
 #include <cmath>
 #include <cstdlib>
 #include <filesystem>
@@ -99,6 +101,20 @@ std::string lastMatch(const std::string& text, const std::regex& re)
     return last;
 }
 
+//- The value of a dictionary entry (a/b in a sub-dictionary) as
+//  foamDictionary prints it, empty when the entry is missing
+std::string foamEntry(const fs::path& file, const std::string& entry)
+{
+    const fs::path out = file.string() + ".entry";
+    const std::string cmd =
+        "foamDictionary -entry " + entry + " -value '" + file.string()
+      + "' > '" + out.string() + "' 2> /dev/null";
+    std::string value = std::system(cmd.c_str()) == 0 ? readText(out) : "";
+    fs::remove(out);
+    while (!value.empty() && std::isspace(value.back())) value.pop_back();
+    return value;
+}
+
 int runIn(const fs::path& dir, const std::string& command, const std::string& log)
 {
     const std::string cmd =
@@ -125,7 +141,11 @@ TEST(SpemStudy, twoRunStudyWritesTheRunsOwnNumbersAndResumes)
            " object spemStudyDict; }\n"
            "methods     (SPH SPEM);\n"
            "resolutions (5);\n"
-           "endTime     0.1;\n";
+           "endTime     0.1;\n"
+           "methodEntries\n{\n"
+           "    SPH  (\"system/spemSchemes\" \"sph/densityDiffusion\" 0.05);\n"
+           "    SPEM (\"system/spemSchemes\" \"conversion/minInteriorAngle\" 25);\n"
+           "}\n";
 
     ASSERT_EQ(runIn(caseDir, python + " " + spemStudy, "log.spemStudy"), 0)
         << readText(caseDir/"log.spemStudy");
@@ -165,6 +185,22 @@ TEST(SpemStudy, twoRunStudyWritesTheRunsOwnNumbersAndResumes)
                 "method          " + row.at("method") + ";"
             ),
             std::string::npos
+        );
+        // methodEntries: each method's entries in its own runs only, the
+        // sub-dictionary the tutorial lacks added
+        const bool sph = row.at("method") == "SPH";
+        EXPECT_EQ
+        (
+            foamEntry(runDir/"system"/"spemSchemes", "sph/densityDiffusion"),
+            sph ? "0.05" : "0.1"
+        );
+        EXPECT_EQ
+        (
+            foamEntry
+            (
+                runDir/"system"/"spemSchemes", "conversion/minInteriorAngle"
+            ),
+            sph ? "" : "25"
         );
         // CPU time of spemFoam from wait4 against the solver's own
         // ExecutionTime (its CPU clock at the last log entry: the end of
