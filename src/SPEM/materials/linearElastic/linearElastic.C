@@ -22,8 +22,7 @@ bool Foam::linearElastic::stress
 ) const
 {
     const scalar lambda = planeLambda_, mu = mu_;
-    #pragma omp parallel for schedule(static) if(end - begin > minParallelLoop)
-    for (label k = begin; k < end; ++k)
+    parallelFor(begin, end, [&](const label k)
     {
         const scalar* g = grad + 4*k;
         scalar* s = stress + 4*k;
@@ -33,7 +32,7 @@ bool Foam::linearElastic::stress
         s[1] = 2*mu*exy;
         s[2] = s[1];
         s[3] = volumetric + 2*mu*g[3];
-    }
+    });
     return true;
 }
 

@@ -83,18 +83,15 @@ bool Foam::neoHookean::stress
 {
     const bool planeStress = this->planeStress();
     const scalar lambda = lambda_, mu = mu_;
-    bool ok = true;
-    #pragma omp parallel for schedule(static) reduction(&&: ok) if(end - begin > minParallelLoop)
-    for (label k = begin; k < end; ++k)
+    return parallelAll(begin, end, [&](const label k)
     {
         scalar F[4];
         const scalar J = deformationGradient(grad + 4*k, F);
         scalar* P = stress + 4*k;
         if (!(J > 0))
         {
-            ok = false;
             P[0] = P[1] = P[2] = P[3] = 0;
-            continue;
+            return false;
         }
         const scalar lnJ = std::log(J);
         // ln J_3D = ln J + ln lambda_zz
@@ -104,8 +101,8 @@ bool Foam::neoHookean::stress
         const scalar FinvT[4] = {F[3]/J, -F[2]/J, -F[1]/J, F[0]/J};
         const scalar c = lambda*lnJ3 - mu;
         for (label i = 0; i < 4; ++i) P[i] = mu*F[i] + c*FinvT[i];
-    }
-    return ok;
+        return true;
+    });
 }
 
 

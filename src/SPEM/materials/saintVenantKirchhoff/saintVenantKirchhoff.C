@@ -51,21 +51,18 @@ bool Foam::saintVenantKirchhoff::stress
     // with planeLambda exactly; the domain is collapsed if the
     // out-of-plane C_zz = 1 + 2 E_zz it implies is not positive
     const scalar zzRatio = outOfPlaneStrainRatio();
-    bool ok = true;
-    #pragma omp parallel for schedule(static) reduction(&&: ok) if(end - begin > minParallelLoop)
-    for (label k = begin; k < end; ++k)
+    return parallelAll(begin, end, [&](const label k)
     {
         scalar F[4], S[3], E[3];
         const scalar J = deformationGradient(grad + 4*k, F);
         svk(F, planeLambda_, mu_, S, E);
-        ok = ok && J > 0 && 1 + 2*zzRatio*(E[0] + E[2]) > 0;
         scalar* P = stress + 4*k;
         P[0] = F[0]*S[0] + F[1]*S[1];
         P[1] = F[0]*S[1] + F[1]*S[2];
         P[2] = F[2]*S[0] + F[3]*S[1];
         P[3] = F[2]*S[1] + F[3]*S[2];
-    }
-    return ok;
+        return J > 0 && 1 + 2*zzRatio*(E[0] + E[2]) > 0;
+    });
 }
 
 

@@ -58,8 +58,7 @@ bool Foam::weaklyCompressibleNewtonian::stress
 ) const
 {
     const scalar c2 = c_*c_, rho0 = rho_, twoMu = 2*mu_;
-    #pragma omp parallel for schedule(static) if(end - begin > minParallelLoop)
-    for (label k = begin; k < end; ++k)
+    parallelFor(begin, end, [&](const label k)
     {
         const scalar* g = grad + 4*k;
         const scalar p = c2*(mass[k]/area[k] - rho0);           // eq. 7
@@ -69,7 +68,7 @@ bool Foam::weaklyCompressibleNewtonian::stress
         s[1] = 0.5*twoMu*(g[1] + g[2]);
         s[2] = s[1];
         s[3] = -p + twoMu*(g[3] - div3);
-    }
+    });
     return true;
 }
 

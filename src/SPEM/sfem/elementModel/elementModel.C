@@ -415,25 +415,26 @@ bool Foam::elementModel::elementPass(const bool solidsOnly)
             const scalar c = mat.waveSpeed();
             const scalar nu = mat.kinematicViscosity();
             scalar hMin = std::numeric_limits<scalar>::max();
-            bool regionOk = true;
-            #pragma omp parallel for schedule(static) reduction(min: hMin) reduction(&&: regionOk) if(end - begin > minParallelLoop)
-            for (label el = begin; el < end; ++el)
-            {
-                const label* n = &elemNodes_[3*el];
-                const scalar* x0 = x + 2*n[0];
-                const scalar* x1 = x + 2*n[1];
-                const scalar* x2 = x + 2*n[2];
-                scalar AgradN[6];
-                const scalar A = triangleAreaGradN(x0, x1, x2, AgradN);
-                elemArea_[el] = A;
-                regionOk = regionOk && A > 0;
-                hMin = std::min(hMin, minAltitude(x0, x1, x2, A));
-                areaGradient
-                (
-                    AgradN, v + 2*n[0], v + 2*n[1], v + 2*n[2],
-                    &elemAreaGrad_[4*el]
-                );
-            }
+            const bool regionOk = parallelAllMin
+            (
+                begin, end, hMin, [&](const label el, scalar& least)
+                {
+                    const label* n = &elemNodes_[3*el];
+                    const scalar* x0 = x + 2*n[0];
+                    const scalar* x1 = x + 2*n[1];
+                    const scalar* x2 = x + 2*n[2];
+                    scalar AgradN[6];
+                    const scalar A = triangleAreaGradN(x0, x1, x2, AgradN);
+                    elemArea_[el] = A;
+                    least = std::min(least, minAltitude(x0, x1, x2, A));
+                    areaGradient
+                    (
+                        AgradN, v + 2*n[0], v + 2*n[1], v + 2*n[2],
+                        &elemAreaGrad_[4*el]
+                    );
+                    return A > 0;
+                }
+            );
             if (!regionOk || !std::isfinite(hMin))
             {
                 std::ostringstream os;
@@ -476,51 +477,51 @@ bool Foam::elementModel::elementPass(const bool solidsOnly)
             // root once per region: divisions and square roots bound it.
             const bool fromState = !mat.isGeometricallyLinear();
             scalar minRatio = std::numeric_limits<scalar>::max();
-            bool regionOk = true;
-            #pragma omp parallel for schedule(static) reduction(min: minRatio) reduction(&&: regionOk) if(end - begin > minParallelLoop)
-            for (label el = begin; el < end; ++el)
-            {
-                const label* n = &elemNodes_[3*el];
-                scalar u[3][2];
-                for (label a = 0; a < 3; ++a)
+            const bool regionOk = parallelAllMin
+            (
+                begin, end, minRatio, [&](const label el, scalar& least)
                 {
-                    u[a][0] = x[2*n[a]] - X[2*n[a]];
-                    u[a][1] = x[2*n[a] + 1] - X[2*n[a] + 1];
-                }
-                // Reference A grad N: recomputing it is cheaper than
-                // streaming it from memory
-                scalar AgradN[6];
-                const scalar A0 = triangleAreaGradN
-                (
-                    X + 2*n[0], X + 2*n[1], X + 2*n[2], AgradN
-                );
-                scalar* Ag = &elemAreaGrad_[4*el];
-                areaGradient(AgradN, u[0], u[1], u[2], Ag);
-                if (!fromState) continue;
+                    const label* n = &elemNodes_[3*el];
+                    scalar u[3][2];
+                    for (label a = 0; a < 3; ++a)
+                    {
+                        u[a][0] = x[2*n[a]] - X[2*n[a]];
+                        u[a][1] = x[2*n[a] + 1] - X[2*n[a] + 1];
+                    }
+                    // Reference A grad N: recomputing it is cheaper than
+                    // streaming it from memory
+                    scalar AgradN[6];
+                    const scalar A0 = triangleAreaGradN
+                    (
+                        X + 2*n[0], X + 2*n[1], X + 2*n[2], AgradN
+                    );
+                    scalar* Ag = &elemAreaGrad_[4*el];
+                    areaGradient(AgradN, u[0], u[1], u[2], Ag);
+                    if (!fromState) return true;
 
-                // The element's F = I + grad u; its current area is J A0
-                const scalar invA0 = 1/A0;
-                const scalar F[4] =
-                {
-                    1 + Ag[0]*invA0, Ag[1]*invA0, Ag[2]*invA0, 1 + Ag[3]*invA0
-                };
-                const scalar J = F[0]*F[3] - F[1]*F[2];
-                if (!(J > 0))
-                {
-                    regionOk = false;
-                    continue;
+                    // The element's F = I + grad u; its current area is
+                    // J A0
+                    const scalar invA0 = 1/A0;
+                    const scalar F[4] =
+                    {
+                        1 + Ag[0]*invA0, Ag[1]*invA0, Ag[2]*invA0,
+                        1 + Ag[3]*invA0
+                    };
+                    const scalar J = F[0]*F[3] - F[1]*F[2];
+                    if (!(J > 0)) return false;
+                    const scalar A = J*A0;
+                    least = std::min
+                    (
+                        least,
+                        A*A
+                       /(
+                            longestEdgeSqr(x + 2*n[0], x + 2*n[1], x + 2*n[2])
+                           *mat.longitudinalModulus(F)
+                        )
+                    );
+                    return true;
                 }
-                const scalar A = J*A0;
-                minRatio = std::min
-                (
-                    minRatio,
-                    A*A
-                   /(
-                        longestEdgeSqr(x + 2*n[0], x + 2*n[1], x + 2*n[2])
-                       *mat.longitudinalModulus(F)
-                    )
-                );
-            }
+            );
             if (fromState)
             {
                 timeScale =
@@ -613,12 +614,11 @@ bool Foam::elementModel::domainPass(const bool solidsOnly)
         const bool fluid = materials_[r].isFluid();
 
         // Performance critical: every domain, every step (eq. 2)
-        #pragma omp parallel for schedule(static) if(end - begin > minParallelLoop)
-        for (label k = begin; k < end; ++k)
+        parallelFor(begin, end, [&](const label k)
         {
             const scalar A = smoothDomainGradient(k);
             if (fluid) domainArea_[k] = A/3;
-        }
+        });
 
         if
         (
@@ -650,11 +650,7 @@ void Foam::elementModel::forcePass(const bool solidsOnly)
         const label begin = regions_[r].elemBegin, end = regions_[r].elemEnd;
 
         // Performance critical: every element, every step (eq. 5)
-        #pragma omp parallel for schedule(static) if(end - begin > minParallelLoop)
-        for (label el = begin; el < end; ++el)
-        {
-            elementForce(el, x);
-        }
+        parallelFor(begin, end, [&](const label el) { elementForce(el, x); });
     }
 }
 
@@ -875,13 +871,10 @@ bool Foam::elementModel::advance(const scalar dt)
     // Implicit mass-proportional damping: stable for any alpha dt
     const scalar span = 0.5*(previousDeltaT_[cur_] + dt);
     const scalar keep = 1/(1 + massDamping_*span), gain = span*keep;
-    bool finite = true;
-
     scalar* reaction = nodeReaction_.data();
 
     // Performance critical: every node, every step
-    #pragma omp parallel for schedule(static) reduction(&&: finite) if(nNodes_ > minParallelLoop)
-    for (label n = 0; n < nNodes_; ++n)
+    const bool finite = parallelAll(0, nNodes_, [&](const label n)
     {
         // A node without elements (all became particles) stays where it is
         if (nodeMass_[n] == 0)
@@ -889,15 +882,13 @@ bool Foam::elementModel::advance(const scalar dt)
             vNew[2*n] = vNew[2*n + 1] = 0;
             xNew[2*n] = x[2*n];
             xNew[2*n + 1] = x[2*n + 1];
-            continue;
+            return true;
         }
-        const bool ok =
-            integrateNode
-            (
-                n, x, v, xNew, vNew, span, keep, gain, dt, reaction + 2*n
-            );
-        finite = finite && ok;
-    }
+        return integrateNode
+        (
+            n, x, v, xNew, vNew, span, keep, gain, dt, reaction + 2*n
+        );
+    });
     cur_ = 1 - cur_;
     previousDeltaT_[cur_] = dt;
     previousSubStep_[cur_] = dt;
@@ -921,12 +912,10 @@ bool Foam::elementModel::advanceFluidPartition(const scalar dt)
     scalar* vNew = v_[1 - cur_].data();
     const scalar span = 0.5*(previousDeltaT_[cur_] + dt);
     const scalar keep = 1/(1 + massDamping_*span), gain = span*keep;
-    bool finite = true;
     scalar* reaction = nodeReaction_.data();
 
     // Performance critical: every node, every fluid step
-    #pragma omp parallel for schedule(static) reduction(&&: finite) if(nNodes_ > minParallelLoop)
-    for (label n = 0; n < nNodes_; ++n)
+    const bool finite = parallelAll(0, nNodes_, [&](const label n)
     {
         // The solid partition keeps its state for the sub-steps; a node
         // without elements stays where it is
@@ -936,15 +925,13 @@ bool Foam::elementModel::advanceFluidPartition(const scalar dt)
             vNew[2*n + 1] = solidNode_[n] ? v[2*n + 1] : 0;
             xNew[2*n] = x[2*n];
             xNew[2*n + 1] = x[2*n + 1];
-            continue;
+            return true;
         }
-        const bool ok =
-            integrateNode
-            (
-                n, x, v, xNew, vNew, span, keep, gain, dt, reaction + 2*n
-            );
-        finite = finite && ok;
-    }
+        return integrateNode
+        (
+            n, x, v, xNew, vNew, span, keep, gain, dt, reaction + 2*n
+        );
+    });
     // The fluid's load on the solid nodes and its rate from the last
     // fluid step (extrapolated load)
     if (load_ != subCycleLoad::held)
@@ -1098,12 +1085,10 @@ bool Foam::elementModel::advanceSolidSubStep
     const scalar keep = 1/(1 + massDamping_*span), gain = span*keep;
     // The reactions are the mean force over the fluid step
     const scalar weight = subDt/dt;
-    bool finite = true;
     const label nSolid = label(solidNodes_.size());
 
     // Performance critical: every solid node, every sub-step
-    #pragma omp parallel for schedule(static) reduction(&&: finite) if(nSolid > minParallelLoop)
-    for (label i = 0; i < nSolid; ++i)
+    const bool finite = parallelAll(0, nSolid, [&](const label i)
     {
         const label n = solidNodes_[i];
         scalar r[2] = {0, 0};
@@ -1120,12 +1105,12 @@ bool Foam::elementModel::advanceSolidSubStep
                 n, x, v, x, v, span, keep, gain, subDt, r,
                 extrapolate ? extra : nullptr
             );
-        finite = finite && ok;
-        if (nodeConstraint_[n] == constraint::free) continue;
+        if (nodeConstraint_[n] == constraint::free) return ok;
         scalar* reaction = &nodeReaction_[2*n];
         reaction[0] = (first ? 0 : reaction[0]) + weight*r[0];
         reaction[1] = (first ? 0 : reaction[1]) + weight*r[1];
-    }
+        return ok;
+    });
     previousSubStep_[cur_] = subDt;
     if (!finite)
     {
