@@ -9,14 +9,16 @@ Description
                          rim beside the side walls is outside), the nearest
                          wall point and its normal, the sign at a corner;
                          open sides above a walled floor, an open top and
-                         bottom, a boundary open all round.
+                         bottom, a boundary open all round; the distance to
+                         the nearest wall beside the nearest boundary point.
       - WallContact.*    a neoHookean cantilever 0.04 m thick clamped to the
                          left wall 0.1 m above the floor, loaded by its own
                          weight with g = 100 m/s^2: unsupported its tip
                          would sag 1.5 rho g L^4/(E t^2) = 12 m (linear
                          theory), so it lands on the floor; no node ever
                          crosses it (to round-off), while the same run
-                         without the contact does cross it. The same plate
+                         without the contact does cross it (nor with the
+                         nodes' clearances 100 times too large: measured). The same plate
                          lying on the floor lifts off it under an upward
                          load and does not sink under a downward one. A
                          heavy free cylinder and a tilted free square
@@ -255,6 +257,17 @@ TEST(TankBoundary, nearestWallPointHasTheOutwardNormalAndTheSign)
 
     // Deep inside: nothing within reach
     EXPECT_FALSE(tank.nearest(0.5, 0.25, q));
+
+    // The distance to the nearest wall point beside the nearest boundary
+    // point: 0.01 below the open top, 0.03 from the left wall; with no
+    // wall within reach, reach
+    scalar wallDistance = -1;
+    ASSERT_TRUE(tank.nearest(0.03, 0.49, q, &wallDistance));
+    EXPECT_FALSE(q.wall);
+    EXPECT_NEAR(q.signedDistance, -0.01, 1e-14);
+    EXPECT_NEAR(wallDistance, 0.03, 1e-14);
+    ASSERT_TRUE(tank.nearest(0.5, 0.49, q, &wallDistance));
+    EXPECT_EQ(wallDistance, tank.reach());
 }
 
 

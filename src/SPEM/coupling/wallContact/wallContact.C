@@ -66,6 +66,8 @@ Foam::wallContact::wallContact
                 nodes_.push_back(n);
             }
         }
+        lookedUpAt_.assign(2*nodes_.size(), 0);
+        clearanceSqr_.assign(nodes_.size(), 0);
     }
 
     forAll(bodies, b)
@@ -142,12 +144,33 @@ bool Foam::wallContact::correctStructures
     tankBoundary::nearestPoint q;
 
     // Performance critical: every structure node, every step (O(1) each)
-    for (const label n : nodes_)
+    for (size_t i = 0; i < nodes_.size(); ++i)
     {
+        const label n = nodes_[i];
         const scalar px = x[2*n], py = x[2*n + 1];
-        if (tank_.nearest(px, py, q))
+        const scalar dx = px - lookedUpAt_[2*i];
+        const scalar dy = py - lookedUpAt_[2*i + 1];
+        if (dx*dx + dy*dy < clearanceSqr_[i]) continue;
+        lookedUpAt_[2*i] = px;
+        lookedUpAt_[2*i + 1] = py;
+        clearanceSqr_[i] = 0;
+        scalar wallDistance;
+        if (tank_.nearest(px, py, q, &wallDistance))
         {
-            if (!q.wall || !(q.signedDistance > 0)) continue;
+            if (!q.wall || !(q.signedDistance > 0))
+            {
+                // Inside: the disc without boundary; beside an open edge:
+                // the half-way to the nearest wall, while an edge stays
+                // within reach (a margin for the distances' round-off)
+                const scalar d = std::abs(q.signedDistance);
+                const scalar inside = q.signedDistance < 0 ? d : 0;
+                const scalar open =
+                    q.wall
+                  ? 0 : min(0.5*(wallDistance - d), tank_.reach() - d);
+                const scalar clearance = (1 - 1e-9)*max(inside, open);
+                clearanceSqr_[i] = clearance > 0 ? clearance*clearance : 0;
+                continue;
+            }
             ++nNodeContacts_;
             elements.setPosition(n, q.x, q.y);
             const scalar vn = v[2*n]*q.nx + v[2*n + 1]*q.ny;

@@ -412,13 +412,14 @@ bool Foam::tankBoundary::nearest
 (
     const scalar x,
     const scalar y,
-    nearestPoint& result
+    nearestPoint& result,
+    scalar* wallDistance
 ) const
 {
     const label c = cellOf(x, y);
     if (c < 0) return false;
     label best = -1;
-    scalar bestD2 = reach_*reach_, bestT = 0;
+    scalar bestD2 = reach_*reach_, bestT = 0, wallD2 = reach_*reach_;
     for (label j = cellStart_[c]; j < cellStart_[c + 1]; ++j)
     {
         scalar t;
@@ -429,7 +430,9 @@ bool Foam::tankBoundary::nearest
             bestD2 = d2;
             bestT = t;
         }
+        if (edgeIsWall_[cellEdges_[j]]) wallD2 = std::min(wallD2, d2);
     }
+    if (wallDistance) *wallDistance = std::sqrt(wallD2);
     if (best < 0) return false;
 
     const label a = edgeNodes_[2*best], b = edgeNodes_[2*best + 1];
