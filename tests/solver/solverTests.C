@@ -3250,9 +3250,13 @@ TEST_F(Solver, costBreakdownOfAnSPEMPlateRunWithoutConversionHasNoConversion)
         "conversion\n{\n    criterion none;\n    presetParticleRegions\n"
         "    {\n        top { type box; min (-1 0.5 0); max (1 2 0); }\n"
         "    }\n}\n";
-    // The plate's step, about 3e-5 s at maxCo 0.5: about 100 steps
+    // The plate's step, about 3e-5 s at maxCo 0.5: about 1000 steps (with
+    // everything at the plate's step: sub-cycled, the water's step would
+    // take the run in a few steps), long enough for each part to add up
+    // to a millisecond, the log's resolution
     setControl("adjustTimeStep", "yes");
-    setControl("endTime", "0.003");
+    setControl("subCycling", "off");
+    setControl("endTime", "0.03");
     setControl("logInterval", "50");
     setControl("writeInterval", "1000");
     const std::string text = runExpectingSuccess();

@@ -137,9 +137,12 @@ int main(int argc, char *argv[])
     model.write(runTime.timeIndex() == 0);
     timeStep->check(model.stableDeltaT());
     timeStep->reportStart(Info, model.stableDeltaT(), model.stableStepLimit());
-    if (!timeStep->withinMaxSteps(model.stableDeltaT()))
+    if (!timeStep->withinMaxSteps(model.maxStepsStableDeltaT()))
     {
-        timeStep->stopAtMaxSteps(model.stableDeltaT(), model.stableStepLimit());
+        timeStep->stopAtMaxSteps
+        (
+            model.maxStepsStableDeltaT(), model.stableStepLimit()
+        );
     }
 
     Info<< "Starting time loop" << nl << endl;
@@ -156,13 +159,13 @@ int main(int argc, char *argv[])
         timeStep->setDeltaT(model.stableDeltaT());
         // The description is made only to stop: nothing is allocated in
         // the loop
-        if (!timeStep->withinMaxSteps(model.stableDeltaT()))
+        if (!timeStep->withinMaxSteps(model.maxStepsStableDeltaT()))
         {
             // The state is good, only too slow to go on: written to look at
             model.write(true);
             timeStep->stopAtMaxSteps
             (
-                model.stableDeltaT(), model.stableStepLimit(), true
+                model.maxStepsStableDeltaT(), model.stableStepLimit(), true
             );
         }
         ++runTime;

@@ -9,10 +9,29 @@
 
 Foam::solidSubCycling::solidSubCycling(const dictionary& controlDict)
 :
-    enabled_(controlDict.getOrDefault<Switch>("subCycling", false)),
-    maxCo_(timeStepControl::readMaxCo(controlDict)),
-    load_(elementModel::subCycleLoad::interpolated)
+    enabled_(controlDict.getOrDefault<Switch>("subCycling", true)),
+    maxCo_
+    (
+        min
+        (
+            controlDict.getOrDefault<scalar>("subCyclingMaxCo", defaultMaxCo),
+            timeStepControl::readMaxCo(controlDict)
+        )
+    ),
+    load_(elementModel::subCycleLoad::interpolated),
+    maxSteps_(timeStepControl::readMaxSteps(controlDict)),
+    stepMaxCo_(timeStepControl::readMaxCo(controlDict))
 {
+    const scalar co =
+        controlDict.getOrDefault<scalar>("subCyclingMaxCo", defaultMaxCo);
+    if (!(co > 0 && co <= 1))
+    {
+        FatalIOErrorInFunction(controlDict)
+            << "subCyclingMaxCo " << co << " in " << controlDict.name()
+            << ": the Courant number of the solids' sub-steps must lie in"
+            << " (0, 1] (default " << defaultMaxCo << ")"
+            << exit(FatalIOError);
+    }
     const word load =
         controlDict.getOrDefault<word>("subCyclingLoad", "interpolated");
     if (load == "extrapolated")

@@ -47,7 +47,8 @@ void Foam::timeStepControl::checkControlDict() const
             "fileHandler", "DebugSwitches", "InfoSwitches",
             "OptimisationSwitches", "DimensionSets", "DimensionedConstants",
             "Tolerances", "logInterval", "maxSteps", "restartFallback",
-            "allowMaxCoAbove1", "subCycling", "subCyclingLoad", "vtkFormat",
+            "allowMaxCoAbove1", "subCycling", "subCyclingLoad",
+            "subCyclingMaxCo", "vtkFormat",
             "vtkFields"
         }
     );
@@ -121,6 +122,12 @@ Foam::scalar Foam::timeStepControl::readMaxCo(const dictionary& controlDict)
 }
 
 
+Foam::scalar Foam::timeStepControl::readMaxSteps(const dictionary& controlDict)
+{
+    return controlDict.getOrDefault<scalar>("maxSteps", 1e7);
+}
+
+
 void Foam::timeStepControl::checkBeforeTime(const fileName& casePath)
 {
     // OpenFOAM's Time divides by both while it is constructed: a zero
@@ -178,7 +185,7 @@ Foam::timeStepControl::timeStepControl(Time& runTime)
     startTime_(runTime.startTime().value()),
     stableDeltaT_(GREAT),
     wallStart_(std::chrono::steady_clock::now()),
-    maxSteps_(runTime.controlDict().getOrDefault<scalar>("maxSteps", 1e7)),
+    maxSteps_(readMaxSteps(runTime.controlDict())),
     loopStart_(wallStart_),
     startStableDeltaT_(0)
 {

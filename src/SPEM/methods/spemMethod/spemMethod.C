@@ -4,6 +4,7 @@
 #include "sphKernel.H"
 #include "elementToParticle.H"
 #include "elementParticleCoupling.H"
+#include "timeStepControl.H"
 
 #include <cmath>
 #include <sstream>
@@ -685,15 +686,50 @@ bool Foam::spemMethod::advanceElements(const scalar dt)
     {
         return fail(elements_->failure(), unstableHint);
     }
-    const label n = lastSubSteps_;
-    const scalar subDt = dt/n;
-    for (label k = 0; k < n; ++k)
+    // n sub-steps of dt/n; if an evaluation finds the solids' stable step
+    // fallen below the sub-step (an element being crushed: hyperelastic
+    // solids stiffen and shrink), the rest of the step is split again at
+    // the new one, so that no sub-step outruns it
+    label n = lastSubSteps_;
+    scalar subDt = dt/n, splitAt = 0;
+    label j = 0;
+    for (label k = 0; j < n; ++k, ++j)
     {
-        if (k > 0 && !elements_->evaluateSolids(k*subDt))
+        if (k > 0)
         {
-            return fail(elements_->failure(), unstableHint);
+            const scalar elapsed = splitAt + j*subDt;
+            if (!elements_->evaluateSolids(elapsed))
+            {
+                return fail(elements_->failure(), unstableHint);
+            }
+            const scalar solid = elements_->solidStableDeltaT();
+            if (subDt > subCycling_.maxCo()*solid*(1 + 1e-12))
+            {
+                const label more = subCycling_.subSteps(dt - elapsed, solid);
+                if (more > subCycling_.maxSteps())
+                {
+                    std::ostringstream os;
+                    os  << "the solids' stable step fell to " << solid
+                        << " s within a sub-cycled step, set by ";
+                    describeElementLimit(os, elements_->solidStableLimit());
+                    os  << "; the step would take " << more << " more"
+                        << " sub-steps (maxSteps " << subCycling_.maxSteps()
+                        << "): an element is crushed";
+                    return fail
+                    (
+                        os.str(),
+                        "A material too soft for the load, or a blow-up in"
+                        " slow motion; check the solid near the failure."
+                    );
+                }
+                splitAt = elapsed;
+                subDt = (dt - elapsed)/more;
+                n = more;
+                j = 0;
+                lastSubSteps_ = k + more;
+            }
         }
-        if (!elements_->advanceSolidSubStep(subDt, k*subDt, dt))
+        if (!elements_->advanceSolidSubStep(subDt, splitAt + j*subDt, dt))
         {
             return fail(elements_->failure(), unstableHint);
         }
@@ -914,8 +950,9 @@ std::string Foam::spemMethod::stableStepLimit() const
         const scalar solid = elements_->solidStableDeltaT();
         os  << "\n    solids sub-cycle (subCycling on, load "
             << subCycling_.loadName()
-            << "): ceil(deltaT/(maxCo dt_s)) sub-steps per step, "
-            << subCycling_.subSteps(subCycling_.maxCo()*stableDeltaT(), solid)
+            << "): ceil(deltaT/(Co_s dt_s)) sub-steps per step at Co_s "
+            << subCycling_.maxCo() << " (subCyclingMaxCo), "
+            << subCycling_.subSteps(subCycling_.stepMaxCo()*stableDeltaT(), solid)
             << " at maxCo times the stable step; the solids' stable step dt_s "
             << solid << " s is set by ";
         describeElementLimit(os, elements_->solidStableLimit());
@@ -961,6 +998,20 @@ Foam::label Foam::spemMethod::solidSubSteps(const scalar dt) const
         subCycles()
       ? subCycling_.subSteps(dt, elements_->solidStableDeltaT())
       : 1;
+}
+
+
+Foam::scalar Foam::spemMethod::maxStepsStableDeltaT() const
+{
+    const scalar dt = stableDeltaT();
+    if (!subCycles()) return dt;
+    // Sub-steps of Co_s dt_s counted as steps of maxCo times this
+    return min
+    (
+        dt,
+        subCycling_.maxCo()/subCycling_.stepMaxCo()
+       *elements_->solidStableDeltaT()
+    );
 }
 
 

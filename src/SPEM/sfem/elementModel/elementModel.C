@@ -546,17 +546,19 @@ bool Foam::elementModel::elementPass(const bool solidsOnly)
             }
         }
     }
+    // The solids' own limit after every evaluation, also within a
+    // sub-cycled step (a crushed element's step falls within one)
+    solidStableLimit_ = solidLimit;
+    solidStableDeltaT_ =
+        solidLimit.which == stepLimit::criterion::none
+      ? GREAT : solidLimit.deltaT;
     if (solidsOnly) return ok;
     stableDeltaT_ = timeScale;
     stableLimit_ = limit;
     fluidStableLimit_ = fluidLimit;
-    solidStableLimit_ = solidLimit;
     fluidStableDeltaT_ =
         fluidLimit.which == stepLimit::criterion::none
       ? GREAT : fluidLimit.deltaT;
-    solidStableDeltaT_ =
-        solidLimit.which == stepLimit::criterion::none
-      ? GREAT : solidLimit.deltaT;
     return ok;
 }
 
@@ -1081,7 +1083,10 @@ bool Foam::elementModel::advanceSolidSubStep
     // fluid step (revert())
     scalar* x = x_[cur_].data();
     scalar* v = v_[cur_].data();
-    const scalar span = first ? 0.5*(previousSubStep_[cur_] + subDt) : subDt;
+    // From the sub-step before, which may have been of another length (the
+    // last of the fluid step before, or one before a re-split); the same
+    // sub-step: exactly subDt
+    const scalar span = 0.5*(previousSubStep_[cur_] + subDt);
     const scalar keep = 1/(1 + massDamping_*span), gain = span*keep;
     // The reactions are the mean force over the fluid step
     const scalar weight = subDt/dt;
