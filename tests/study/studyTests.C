@@ -23,6 +23,7 @@ Description
 #include <regex>
 #include <sstream>
 #include <string>
+#include <tuple>
 #include <vector>
 
 namespace fs = std::filesystem;
@@ -386,6 +387,53 @@ TEST(SpemStudy, errorMeasuresGiveZeroOnItselfAndTheRightValueOnSyntheticCurves)
     }
     EXPECT_NEAR(pythonValue(root, "print(e.bodyForce('g', 'f')[0])"), 0.1, 1e-12);
     EXPECT_EQ(pythonValue(root, "print(e.bodyForce('f', 'f')[0])"), 0);
+
+    // The free surface (surfaceProfile, one table per write time) 0.1 m
+    // above the reference's flat one at t = 1 and 0.3 m at t = 2, at each
+    // of the reference's x; a time the reference lacks is not read: RMS
+    // sqrt((3 0.1^2 + 3 0.3^2)/6) = sqrt(0.05)
+    for (const auto& [run, t, y] : std::vector<std::tuple<std::string, std::string, double>>
+        {{"h", "1", 0}, {"h", "2", 0}, {"i", "1", 0.1}, {"i", "2", 0.3}, {"i", "3", 7}})
+    {
+        const fs::path dir = root/run/"postProcessing"/"surfaceProfile"/"0"/t;
+        fs::create_directories(dir);
+        std::ofstream os(dir/"surfaceProfile.dat");
+        os  << "# Free surface\n# x\ty\n";
+        for (const double x : {-1.0, 0.0, 1.0}) os << x << '\t' << y << '\n';
+    }
+    EXPECT_NEAR
+    (
+        pythonValue(root, "print(e.surfaceHeight('i', 'h')[0])"),
+        std::sqrt(0.05), 1e-12
+    );
+    EXPECT_EQ(pythonValue(root, "print(e.surfaceHeight('h', 'h')[0])"), 0);
+
+    // The plate's mid-span deflection 1.1 times the shear-corrected value
+    // of its referenceData over the last 10 % of the run, half of it
+    // before: error 0.1
+    {
+        const fs::path plateRef = fs::path(SPEM_PROJECT_DIR)/"tutorials"
+            /"hydrostaticElasticPlate"/"referenceData";
+        fs::create_directories(root/"j");
+        fs::create_directory_symlink(plateRef, root/"j"/"referenceData");
+        double wT = 0;
+        std::istringstream is(readText(plateRef/"midSpanDeflection.dat"));
+        std::string key;
+        for (std::string line; std::getline(is, line); )
+        {
+            std::istringstream ls(line);
+            double v;
+            if (ls >> key >> v && key == "Dy_Timoshenko") wT = v;
+        }
+        ASSERT_LT(wT, 0);
+        std::vector<std::vector<double>> dy;
+        for (int k = 0; k <= 20; ++k)
+        {
+            dy.push_back({0.01*k, 0, k >= 18 ? 1.1*wT : 0.5*wT});
+        }
+        writeTable(root/"j", "midSpan", dy);
+    }
+    EXPECT_NEAR(pythonValue(root, "print(e.midSpan('j')[0])"), 0.1, 1e-12);
 
     if (!HasFailure()) fs::remove_all(root);
 }
