@@ -26,6 +26,9 @@ Description
         column's height plus one particle spacing (issue 16);
       - cylinderWaterExit and cylinderSinking at their default resolution:
         no void at the element-particle interface (issue 16);
+      - damBreakElasticPlate with multiResolutionSPEM at nx 20 against SPEM
+        at the same local resolution (nx 35): tip peak within 5 %, RMS
+        difference below 10 % of it (issue 15);
       - damBreakElasticPlate with a plate stiff enough to sub-cycle (E
         1e7): the tip's curve sub-cycled against everything at the plate's
         step, RMS difference below 2 % of its peak (issue 18).
@@ -615,6 +618,73 @@ TEST(SpemValidation, damBreakElasticPlateWithElementsAndParticlesBendsThePlate)
 TEST(SpemValidation, damBreakElasticPlateWithParticlesOnlyBendsThePlate)
 {
     damBreakElasticPlate("SPH");
+}
+
+
+TEST(SpemValidation, damBreakElasticPlateWithRefinedParticlesAsFineSPEM)
+{
+    // Issue 15: multiResolutionSPEM at nx 20 (each converted element three
+    // refined particles: 4800 from the 1600 water elements) against SPEM
+    // at the same local resolution, nx 35 (4900 water elements, one
+    // particle each), to 0.4 s: the tip's peak horizontal displacement
+    // within 5 % (measured 0.2 %) and the RMS difference of the curves
+    // below 10 % of the peak (measured 3.3 %)
+    std::map<std::string, std::vector<std::vector<double>>> tip;
+    for (const auto& [method, nx] : std::vector<std::pair<std::string, std::string>>
+        {{"multiResolutionSPEM", "20"}, {"SPEM", "35"}})
+    {
+        SCOPED_TRACE(method);
+        const fs::path caseDir = copyTutorial
+        (
+            "damBreakElasticPlate", "spemDamBreakElasticPlateLocal" + method
+        );
+        replaceEntry(caseDir/"system/blockMeshDict", "nx", nx);
+        replaceEntry(caseDir/"system/controlDict", "endTime", "0.4");
+        replaceEntry(caseDir/"system/controlDict", "writeInterval", "0.4");
+        replaceEntry(caseDir/"system/spemSchemes", "method", method);
+        ASSERT_TRUE(runCase(caseDir));
+        tip[method] =
+            readTable(caseDir/"postProcessing/plateTip/0/plateTip.dat");
+        ASSERT_FALSE(tip[method].empty());
+        EXPECT_NEAR(tip[method].back()[0], 0.4, 0.01);
+    }
+    const auto& refined = tip["multiResolutionSPEM"];
+    const auto& fine = tip["SPEM"];
+    const auto peakOf = [](const std::vector<std::vector<double>>& rows)
+    {
+        double peak = 0;
+        for (const auto& row : rows) peak = std::max(peak, row[1]);
+        return peak;
+    };
+    const double peakRefined = peakOf(refined), peakFine = peakOf(fine);
+    // The refined run's curve at the fine run's times
+    double sum2 = 0;
+    int n = 0;
+    size_t k = 1;
+    for (const auto& row : fine)
+    {
+        const double t = row[0];
+        if (t < refined.front()[0] || t > refined.back()[0]) continue;
+        while (k + 1 < refined.size() && refined[k][0] < t) ++k;
+        const double w =
+            (t - refined[k - 1][0])/(refined[k][0] - refined[k - 1][0]);
+        const double r = (1 - w)*refined[k - 1][1] + w*refined[k][1];
+        sum2 += (r - row[1])*(r - row[1]);
+        ++n;
+    }
+    const double rms = std::sqrt(sum2/std::max(n, 1));
+    std::printf
+    (
+        "damBreakElasticPlate to 0.4 s: tip peak Dx %.4f m with"
+        " multiResolutionSPEM at nx 20, %.4f m with SPEM at nx 35 (%+.2f %%);"
+        " RMS difference %.4e m, %.2f %% of the peak\n",
+        peakRefined, peakFine, 100*(peakRefined/peakFine - 1), rms,
+        100*rms/peakFine
+    );
+    ASSERT_GT(n, 100);
+    EXPECT_GT(peakFine, 0.02);
+    EXPECT_LT(std::abs(peakRefined/peakFine - 1), 0.05);
+    EXPECT_LT(rms, 0.10*peakFine);
 }
 
 
