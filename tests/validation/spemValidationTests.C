@@ -495,6 +495,23 @@ void particlesOnElementsColumn
     EXPECT_LT(std::abs(walls.second), 0.001*weight);
     EXPECT_LT(std::abs(imbalance.second), 0.001*weight);
 
+    // Every interface node under the particles reaches some of them, also
+    // the refined ones (issue 15, item 3: none left with a zero pressure),
+    // at every log entry
+    const std::regex unreached(R"(interface nodes without particles = (\d+))");
+    int entries = 0;
+    for
+    (
+        std::sregex_iterator m(log.begin(), log.end(), unreached), end;
+        m != end;
+        ++m
+    )
+    {
+        ++entries;
+        EXPECT_EQ((*m)[1].str(), "0") << "at log entry " << entries;
+    }
+    EXPECT_GT(entries, 5);
+
     if (!::testing::Test::HasFailure()) fs::remove_all(caseDir);
 }
 

@@ -448,6 +448,7 @@ void Foam::elementParticleCoupling::interfaceTraction
     //     p_n = sum_j [p_j + rho_j g . (x_n - x_j)] V_j W_nj / sum_j V_j W_nj
     // (measurements and alternatives dropped: src/SPEM/sph/README.md)
     const scalar gx = particles.gx(), gy = particles.gy();
+    nUnreachedNodes_ = 0;
     particles.kernel().visit
     (
         [&](const auto& k)
@@ -475,7 +476,8 @@ void Foam::elementParticleCoupling::interfaceTraction
                             );
                     }
                 );
-                // No particle in reach: a free surface
+                // No particle in reach: a free surface, or a hole
+                if (!(sumW > 0)) ++nUnreachedNodes_;
                 const scalar pn = sumW > 0 ? sumP/sumW : 0;
                 nodePressure_[n] = interfaceSuction_ ? pn : max(pn, scalar(0));
             }

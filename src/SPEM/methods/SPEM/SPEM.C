@@ -499,8 +499,13 @@ void Foam::spemMethods::SPEM::reportInterface(Ostream& os) const
     {
         const scalar* d = coupling_->imbalance();
         os  << ", ghost particles = " << particles_->nGhost()
-            << ", interface segments = " << coupling_->nInterfaceSegments()
-            << ", interface force imbalance = (" << d[0] << ' ' << d[1]
+            << ", interface segments = " << coupling_->nInterfaceSegments();
+        if (coupling_->nUnreachedInterfaceNodes() >= 0)
+        {
+            os  << ", interface nodes without particles = "
+                << coupling_->nUnreachedInterfaceNodes();
+        }
+        os  << ", interface force imbalance = (" << d[0] << ' ' << d[1]
             << ')';
     }
     if (bodyElements_)
