@@ -539,6 +539,32 @@ namespace
 
 //- Run damBreakElasticPlate at nx 20 with a method; expect it to reach
 //  0.4 s with the tip's peak horizontal displacement in [0.02, 0.07] m
+//- The RMS difference of curve a, interpolated linearly at the times of
+//  curve b that it covers, from b there (rows t, y, ...), and at how many
+//  times
+std::pair<double, int> curveDifference
+(
+    const std::vector<std::vector<double>>& a,
+    const std::vector<std::vector<double>>& b
+)
+{
+    double sum2 = 0;
+    int n = 0;
+    size_t k = 1;
+    for (const auto& row : b)
+    {
+        const double t = row[0];
+        if (a.size() < 2 || t < a.front()[0] || t > a.back()[0]) continue;
+        while (k + 1 < a.size() && a[k][0] < t) ++k;
+        const double w = (t - a[k - 1][0])/(a[k][0] - a[k - 1][0]);
+        const double ya = (1 - w)*a[k - 1][1] + w*a[k][1];
+        sum2 += (ya - row[1])*(ya - row[1]);
+        ++n;
+    }
+    return {std::sqrt(sum2/std::max(n, 1)), n};
+}
+
+
 void damBreakElasticPlate(const std::string& method)
 {
     const fs::path caseDir =
@@ -568,25 +594,13 @@ void damBreakElasticPlate(const std::string& method)
        /"tutorials/damBreakElasticPlate/referenceData"
        /"Ryzhakov2010_tipDisplacement.dat"
     );
-    double sum2 = 0;
-    int n = 0;
-    size_t k = 1;
-    for (const auto& ref : reference)
-    {
-        const double t = ref[0];
-        if (t > tip.back()[0] || t < tip.front()[0]) continue;
-        while (k + 1 < tip.size() && tip[k][0] < t) ++k;
-        const double w = (t - tip[k - 1][0])/(tip[k][0] - tip[k - 1][0]);
-        const double ours = (1 - w)*tip[k - 1][1] + w*tip[k][1];
-        sum2 += (ours - ref[1])*(ours - ref[1]);
-        ++n;
-    }
+    const auto [rms, n] = curveDifference(tip, reference);
     std::printf
     (
         "damBreakElasticPlate nx 20, method %s: tip peak Dx %.4f m at"
         " t = %.3f s; RMS difference from Ryzhakov et al. (2010) %.4f m at"
         " %d points up to 0.4 s\n",
-        method.c_str(), peak, tPeak, std::sqrt(sum2/std::max(n, 1)), n
+        method.c_str(), peak, tPeak, rms, n
     );
     EXPECT_GT(peak, 0.02);
     EXPECT_LT(peak, 0.07);
@@ -675,21 +689,7 @@ TEST(SpemValidation, damBreakElasticPlateWithRefinedParticlesAsFineSPEM)
     };
     const double peakRefined = peakOf(refined), peakFine = peakOf(fine);
     // The refined run's curve at the fine run's times
-    double sum2 = 0;
-    int n = 0;
-    size_t k = 1;
-    for (const auto& row : fine)
-    {
-        const double t = row[0];
-        if (t < refined.front()[0] || t > refined.back()[0]) continue;
-        while (k + 1 < refined.size() && refined[k][0] < t) ++k;
-        const double w =
-            (t - refined[k - 1][0])/(refined[k][0] - refined[k - 1][0]);
-        const double r = (1 - w)*refined[k - 1][1] + w*refined[k][1];
-        sum2 += (r - row[1])*(r - row[1]);
-        ++n;
-    }
-    const double rms = std::sqrt(sum2/std::max(n, 1));
+    const auto [rms, n] = curveDifference(refined, fine);
     std::printf
     (
         "damBreakElasticPlate to 0.4 s: tip peak Dx %.4f m with"
@@ -753,23 +753,9 @@ TEST(SpemValidation, damBreakElasticPlateSubCycledAsWithOneStep)
         EXPECT_NEAR(tip[subCycling].back()[0], 0.25, 0.01);
     }
     // The sub-cycled curve at the single-step run's times
-    const auto& on = tip["on"];
-    const auto& off = tip["off"];
-    double sum2 = 0, peak = 0;
-    int n = 0;
-    size_t k = 1;
-    for (const auto& row : off)
-    {
-        const double t = row[0];
-        peak = std::max(peak, std::abs(row[1]));
-        if (t < on.front()[0] || t > on.back()[0]) continue;
-        while (k + 1 < on.size() && on[k][0] < t) ++k;
-        const double w = (t - on[k - 1][0])/(on[k][0] - on[k - 1][0]);
-        const double sub = (1 - w)*on[k - 1][1] + w*on[k][1];
-        sum2 += (sub - row[1])*(sub - row[1]);
-        ++n;
-    }
-    const double rms = std::sqrt(sum2/std::max(n, 1));
+    double peak = 0;
+    for (const auto& row : tip["off"]) peak = std::max(peak, std::abs(row[1]));
+    const auto [rms, n] = curveDifference(tip["on"], tip["off"]);
     std::printf
     (
         "damBreakElasticPlate nx 20, E 1e7, to 0.25 s: tip peak |Dx| %.4e m;"
