@@ -39,6 +39,11 @@ Description
     water, and it decelerates: its speed at the end of the window is lower
     than at t0.
 
+    And (issue 15, case II of the paper's sect. 3.2): multiResolutionSPEM
+    on coarse elements against SPEM at the same local resolution, the
+    peak force within 5 % and the wedge's speed closer to it than with
+    SPEM on the coarse elements.
+
 \*---------------------------------------------------------------------------*/
 
 #include "testFiles.H"
@@ -152,6 +157,139 @@ TEST(WedgeWaterEntry, forceBetweenVonKarmanAndWagnerBeforeChineWetsAndDecelerate
     EXPECT_GE(meanC, cVonKarman);
     EXPECT_LE(meanC, cWagner);
     EXPECT_LT(vEnd, vAtT0) << "the wedge did not decelerate";
+}
+
+
+namespace
+{
+
+//- The wedge's vertical force over time of a copy of the tutorial run
+//  with method at nx to 0.017 s: past the force peak (about 13 ms) and
+//  Wagner's chine wetting (15 ms)
+std::vector<std::vector<double>> wedgeForce
+(
+    const std::string& method,
+    const int cells,
+    const std::string& copyName
+)
+{
+    const fs::path caseDir = copyTutorial("wedgeWaterEntry", copyName);
+    replaceEntry(caseDir/"system/blockMeshDict", "nx", std::to_string(cells));
+    replaceEntry(caseDir/"system/spemSchemes", "method", method);
+    replaceEntry(caseDir/"system/controlDict", "endTime", "0.017");
+    replaceEntry(caseDir/"system/controlDict", "writeInterval", "1");
+    if (!runCase(caseDir)) return {};
+    return readTable(caseDir/"postProcessing/wedge/0/wedge.dat");
+}
+
+//- Largest force sample (time, Fy) and largest mean force over a window
+//  of width w centred on a sample, the samples in it weighted alike
+//  (steps change by under 10 % within 1 ms): (time, mean Fy)
+struct forcePeaks
+{
+    double tRaw, raw, tMean, mean;
+};
+
+forcePeaks peaks(const std::vector<std::vector<double>>& rows, const double w)
+{
+    forcePeaks p{0, -1e300, 0, -1e300};
+    for (std::size_t i = 0; i < rows.size(); ++i)
+    {
+        const double t = rows[i][0];
+        if (rows[i][8] > p.raw) p = {t, rows[i][8], p.tMean, p.mean};
+        if (t - w/2 < rows.front()[0] || t + w/2 > rows.back()[0]) continue;
+        double sum = 0;
+        int n = 0;
+        for (const auto& r : rows)
+        {
+            if (std::abs(r[0] - t) <= w/2) { sum += r[8]; ++n; }
+        }
+        if (sum/n > p.mean) { p.tMean = t; p.mean = sum/n; }
+    }
+    return p;
+}
+
+//- RMS difference of column col of table a from that of table b at b's
+//  sample times (a interpolated linearly, up to a's end)
+double curveDifference
+(
+    const std::vector<std::vector<double>>& a,
+    const std::vector<std::vector<double>>& b,
+    const std::size_t col
+)
+{
+    double sum = 0;
+    int n = 0;
+    std::size_t k = 1;
+    for (const auto& r : b)
+    {
+        const double t = r[0];
+        if (t < a.front()[0] || t > a.back()[0]) continue;
+        while (k + 1 < a.size() && a[k][0] < t) ++k;
+        const double w = (t - a[k - 1][0])/(a[k][0] - a[k - 1][0]);
+        const double f = a[k - 1][col] + w*(a[k][col] - a[k - 1][col]);
+        sum += (f - r[col])*(f - r[col]);
+        ++n;
+    }
+    return n ? std::sqrt(sum/n) : 0;
+}
+
+} // End anonymous namespace
+
+
+// Issue 15 (paper sect. 3.2, case II: uniform cells): multiResolutionSPEM
+// on coarse elements against SPEM at the same local resolution. Each
+// converted triangle (a right-split square cell of side s) becomes three
+// particles of spacing sqrt(s^2/6), which is SPEM's one particle per
+// triangle, sqrt(s'^2/2), at s' = s/sqrt(3): nx 20 against nx 20 sqrt(3)
+// = 34.6, rounded to 35. The issue's bound: peak vertical force within 5 %.
+// The force carries the impact's acoustic ringing (c = 100 m/s, single
+// samples scatter by tens of per cent): the peak of the 1 ms mean (the
+// tutorial's plot averages over 1 ms) is asserted with the peak sample.
+// The peak alone hardly depends on the resolution (SPEM at nx 20 has it
+// within 4 % too, and the ringing makes the force curves differ by 13-14 %
+// of the peak RMS whatever the method), so the wedge's speed, the force's
+// time integral, must also come closer to the fine run's than with SPEM on
+// the same coarse elements (measured: RMS difference 0.024 against 0.040
+// m/s, of 1.15 m/s lost by 0.017 s).
+TEST(WedgeWaterEntry, multiResolutionPeakForceAsSPEMAtTheSameLocalResolution)
+{
+    const int coarse = 20, fine = 35;
+    const auto multi =
+        wedgeForce("multiResolutionSPEM", coarse, "wedgeEntryMultiRes");
+    const auto spem = wedgeForce("SPEM", fine, "wedgeEntryFineSPEM");
+    ASSERT_GT(multi.size(), 20u) << "the multiResolutionSPEM run failed";
+    ASSERT_GT(spem.size(), 20u) << "the SPEM run failed";
+    EXPECT_NEAR(multi.back()[0], 0.017, 1e-4);
+    EXPECT_NEAR(spem.back()[0], 0.017, 1e-4);
+
+    const auto coarseSpem = wedgeForce("SPEM", coarse, "wedgeEntryCoarseSPEM");
+    ASSERT_GT(coarseSpem.size(), 20u) << "the coarse SPEM run failed";
+
+    const forcePeaks m = peaks(multi, 1e-3), s = peaks(spem, 1e-3);
+    const double rmsMulti = curveDifference(multi, spem, 5);
+    const double rmsCoarse = curveDifference(coarseSpem, spem, 5);
+    const double dRaw = m.raw/s.raw - 1, dMean = m.mean/s.mean - 1;
+    std::printf
+    (
+        "wedgeWaterEntry case II to 0.017 s: multiResolutionSPEM nx %d"
+        " against SPEM nx %d (%zu and %zu steps)\n"
+        "  peak Fy %.0f N/m at %.2f ms against %.0f N/m at %.2f ms"
+        " (%+.2f %%)\n"
+        "  peak of the 1 ms mean %.0f N/m at %.2f ms against %.0f N/m at"
+        " %.2f ms (%+.2f %%)\n"
+        "  RMS difference of the wedge's speed from SPEM nx %d's:"
+        " %.4f m/s; SPEM nx %d's %.4f m/s (speed lost %.3f m/s)\n",
+        coarse, fine, multi.size(), spem.size(), m.raw, 1e3*m.tRaw, s.raw,
+        1e3*s.tRaw, 100*dRaw, m.mean, 1e3*m.tMean, s.mean, 1e3*s.tMean,
+        100*dMean, fine, rmsMulti, coarse, rmsCoarse,
+        spem.back()[5] - spem.front()[5]
+    );
+    EXPECT_LT(rmsMulti, rmsCoarse)
+        << "the refined particles bring the wedge's speed no closer to the"
+           " fine run's than the coarse elements alone";
+    EXPECT_LT(std::abs(dMean), 0.05);
+    EXPECT_LT(std::abs(dRaw), 0.05);
 }
 
 
