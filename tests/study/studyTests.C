@@ -143,6 +143,7 @@ TEST(SpemStudy, twoRunStudyWritesTheRunsOwnNumbersAndResumes)
            "methods     (SPH SPEM);\n"
            "resolutions (5);\n"
            "endTime     0.1;\n"
+           "methodResolutions { SPEM (4); }\n"
            "methodEntries\n{\n"
            "    SPH  (\"system/spemSchemes\" \"sph/densityDiffusion\" 0.05);\n"
            "    SPEM (\"system/spemSchemes\" \"conversion/minInteriorAngle\" 25);\n"
@@ -187,6 +188,11 @@ TEST(SpemStudy, twoRunStudyWritesTheRunsOwnNumbersAndResumes)
             ),
             std::string::npos
         );
+        // methodResolutions: SPEM at its own nx, SPH at the study's
+        const std::string nx = row.at("method") == "SPH" ? "5" : "4";
+        EXPECT_EQ(row.at("name"), row.at("method") + "_nx" + nx);
+        EXPECT_EQ(row.at("nx"), nx);
+        EXPECT_EQ(foamEntry(runDir/"system"/"blockMeshDict", "nx"), nx);
         // methodEntries: each method's entries in its own runs only, the
         // sub-dictionary the tutorial lacks added
         const bool sph = row.at("method") == "SPH";
@@ -223,7 +229,7 @@ TEST(SpemStudy, twoRunStudyWritesTheRunsOwnNumbersAndResumes)
     ASSERT_EQ(runIn(caseDir, python + " " + spemStudy, "log.spemStudy.2"), 0);
     const std::string second = readText(caseDir/"log.spemStudy.2");
     EXPECT_NE(second.find("SPH_nx5 done before, kept"), std::string::npos) << second;
-    EXPECT_NE(second.find("SPEM_nx5 done before, kept"), std::string::npos) << second;
+    EXPECT_NE(second.find("SPEM_nx4 done before, kept"), std::string::npos) << second;
     EXPECT_EQ(second.find("running (SPH"), std::string::npos) << second;
     EXPECT_EQ
     (
