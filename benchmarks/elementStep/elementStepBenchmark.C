@@ -162,6 +162,39 @@ inline bool step(elementModel& em)
     return em.evaluate() && em.advance(0.5*em.stableDeltaT());
 }
 
+
+//- The plate alone, as the solid sub-steps see it (solidSubCycling): a
+//  strip 1 m long of 4 rows of square cells (two triangles each), nElements
+//  /8 columns, clamped ends, gravity on; its loops are those of a sub-step
+//  of a plate of nElements elements
+elementModel& cachedPlate(const label nElements)
+{
+    static std::map<label, std::unique_ptr<elementModel>> models;
+    std::unique_ptr<elementModel>& em = models[nElements];
+    if (!em)
+    {
+        const label rows = 4;
+        const label nx = std::max<label>(1, nElements/(2*rows));
+        const double h = 1.0/nx;
+        em = testModels::model
+        (
+            testMeshes::build
+            (
+                {{0, 1, -rows*h, 0, int(nx), int(rows), "plate"}},
+                testMeshes::split::alternating,
+                [](double, double, double nx, double) -> std::string
+                {
+                    return std::abs(nx) > 0.5 ? "plateEnds" : "free";
+                }
+            ),
+            {{"plate", plateSolid}},
+            {{"plateEnds", Foam::patchType::clamped}}
+        );
+        em->setGravity(0, -9.81);
+    }
+    return *em;
+}
+
 } // End namespace plateCase
 
 
@@ -254,6 +287,37 @@ void advanceOnly(benchmark::State& state)
     setCounters(state, *em);
 }
 
+//- A step of the plate alone: the loops of one solid sub-step, at the
+//  plate sizes of the tutorials (hydrostaticElasticPlate: 320 elements at
+//  nx 40, 1280 at nx 80), to measure where two threads start to pay
+//  (minParallelLoop)
+void plateStep(benchmark::State& state)
+{
+    elementModel& em = plateCase::cachedPlate(state.range(0));
+    omp_set_num_threads(int(state.range(1)));
+    plateCase::setRest(em);
+    for (int i = 0; i < warmUpSteps; ++i) plateCase::step(em);
+    for (auto _ : state)
+    {
+        if (!plateCase::step(em))
+        {
+            state.SkipWithError(em.failure().c_str());
+            break;
+        }
+    }
+    setCounters(state, em);
+}
+
+//- Plate elements {250 ... 16000} outer, threads {1, 2} inner
+void plateElementsAndThreads(benchmark::internal::Benchmark* b)
+{
+    b->ArgNames({"elements", "threads"});
+    for (const int64_t n : {256, 512, 1024, 2048, 4096, 8192, 16384})
+    {
+        for (const int64_t t : {1, 2}) b->Args({n, t});
+    }
+}
+
 //- Elements {1e4, 1e5, 1e6} outer, threads {1, 2} inner: the order the
 //  models are first needed in
 void elementsAndThreads(benchmark::internal::Benchmark* b)
@@ -281,6 +345,8 @@ BENCHMARK(evaluateOnly)->Apply(elementsAndThreads)->UseRealTime()
     ->Unit(benchmark::kMillisecond)->ComputeStatistics("max", largest);
 BENCHMARK(advanceOnly)->Apply(elementsAndThreads)->UseRealTime()
     ->Unit(benchmark::kMillisecond)->ComputeStatistics("max", largest);
+BENCHMARK(plateStep)->Apply(plateElementsAndThreads)->UseRealTime()
+    ->Unit(benchmark::kMicrosecond)->ComputeStatistics("max", largest);
 
 
 // * * * * * * * * * * * * * * * * * Memory  * * * * * * * * * * * * * * * * //
