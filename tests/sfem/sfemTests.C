@@ -265,6 +265,117 @@ TEST(ESFEM, restoreTrianglesAfterARevertGivesBackTheModelBeforeTheRemoval)
 }
 
 
+TEST(ESFEM, locateFindsWhatAPassOverEveryElementFindsWhileTheMeshMovesAndConverts)
+{
+    // locate() in the current configuration uses a grid (elementLocator)
+    // kept while the nodes move by under half an element: the element it
+    // returns must be the one the pass over every element in index order
+    // returns (the lowest-numbered that contains the point), at points
+    // inside, on edges and nodes, and outside, as the mesh shears and
+    // loses triangles; and the grid must be reused between small moves
+    const triMesh mesh = testMeshes::build({{0, 1, 0, 0.5, 12, 6, "water"}});
+    auto em = testModels::model(mesh, {{"water", testModels::water}});
+    const scalar G[4] = {0.4, 1.5, -0.3, -0.4}, b[2] = {0.2, -0.1};
+    em->setVelocity(linearField(mesh.points(), G, b));
+
+    const auto bruteForce =
+        [&](const scalar px, const scalar py, scalar bary[3])
+        {
+            for (label el = 0; el < em->nElements(); ++el)
+            {
+                if
+                (
+                    elementLocator::contains
+                    (
+                        em->positions(), &em->elementNodes()[3*el], px, py,
+                        bary
+                    )
+                )
+                {
+                    return el;
+                }
+            }
+            return label(-1);
+        };
+    // Points: a regular lattice over and beyond the mesh, and every node
+    // and edge midpoint of the current configuration
+    const auto check = [&](const char* when)
+    {
+        SCOPED_TRACE(when);
+        std::vector<scalar> pts;
+        for (label i = -3; i <= 53; ++i)
+        {
+            for (label j = -3; j <= 28; ++j)
+            {
+                pts.push_back(0.0213*i - 0.01);
+                pts.push_back(0.0197*j - 0.01);
+            }
+        }
+        const std::vector<scalar>& x = em->positions();
+        for (label el = 0; el < em->nElements(); ++el)
+        {
+            const label* n = &em->elementNodes()[3*el];
+            for (label a = 0; a < 3; ++a)
+            {
+                const label c = n[(a + 1) % 3];
+                pts.push_back(x[2*n[a]]);
+                pts.push_back(x[2*n[a] + 1]);
+                pts.push_back(0.5*(x[2*n[a]] + x[2*c]));
+                pts.push_back(0.5*(x[2*n[a] + 1] + x[2*c + 1]));
+            }
+        }
+        label inside = 0;
+        for (std::size_t k = 0; k < pts.size()/2; ++k)
+        {
+            scalar w[3] = {0, 0, 0}, wb[3] = {0, 0, 0};
+            const label el = em->locate(pts[2*k], pts[2*k + 1], false, w);
+            const label elb = bruteForce(pts[2*k], pts[2*k + 1], wb);
+            ASSERT_EQ(el, elb) << "point " << pts[2*k] << ' ' << pts[2*k + 1];
+            if (el >= 0)
+            {
+                ++inside;
+                for (label a = 0; a < 3; ++a) EXPECT_EQ(w[a], wb[a]);
+            }
+        }
+        EXPECT_GT(inside, 100);
+    };
+
+    ASSERT_TRUE(em->evaluate());
+    check("at the start");
+    // Small steps: the grid is rebuilt only when a node has moved by 0.9
+    // of half an element (0.037 m); the speeds are up to about 1 m/s
+    const scalar dt = 0.5*em->stableDeltaT();
+    const label builds0 = em->locatorBuilds();
+    scalar t = 0;
+    while (t < 0.005)
+    {
+        ASSERT_TRUE(em->advance(dt));
+        ASSERT_TRUE(em->evaluate());
+        t += dt;
+        scalar w[3];
+        em->locate(0.5, 0.25, false, w);
+    }
+    EXPECT_EQ(em->locatorBuilds(), builds0) << "rebuilt after small moves";
+    check("after 5 mm");
+    for (label k = 1; k <= 4; ++k)
+    {
+        while (t < 0.005 + 0.025*k)
+        {
+            ASSERT_TRUE(em->advance(dt));
+            ASSERT_TRUE(em->evaluate());
+            t += dt;
+        }
+        check("while shearing");
+    }
+    EXPECT_GT(em->locatorBuilds(), builds0) << "never rebuilt while moving";
+    // Elements taken out (conversion): the grid must not keep them
+    std::vector<label> some;
+    for (label t = 0; t < mesh.nTriangles(); t += 3) some.push_back(t);
+    em->removeTriangles(mesh, some);
+    check("after removing a third of the triangles");
+}
+
+
 TEST(ESFEM, stableStepOfACompressedNeoHookeanBlockComesFromItsCurrentState)
 {
     // A unit block of 4 x 4 cells (right triangles of legs 0.25), squeezed

@@ -1138,6 +1138,7 @@ void Foam::elementModel::removeTriangles
             << "removeTriangles needs the mesh of construction"
             << exit(FatalError);
     }
+    ++topologyVersion_;
     for (const label t : triangles)
     {
         if (t < 0 || t >= mesh.nTriangles() || removedTriangle_[t])
@@ -1174,6 +1175,7 @@ void Foam::elementModel::restoreTriangles
             << "restoreTriangles needs the mesh of construction"
             << exit(FatalError);
     }
+    ++topologyVersion_;
     for (const label t : triangles)
     {
         if (t < 0 || t >= mesh.nTriangles() || !removedTriangle_[t])
@@ -1293,27 +1295,23 @@ Foam::label Foam::elementModel::locate
     scalar bary[3]
 ) const
 {
-    const std::vector<scalar>& x = reference ? X_ : x_[cur_];
-    const scalar tol = 1e-10;
-    for (label el = 0; el < nElements(); ++el)
+    if (reference)
     {
-        const label* n = &elemNodes_[3*el];
-        const scalar* a = &x[2*n[0]];
-        const scalar* b = &x[2*n[1]];
-        const scalar* c = &x[2*n[2]];
-        const scalar det = (b[0] - a[0])*(c[1] - a[1]) - (c[0] - a[0])*(b[1] - a[1]);
-        const scalar l1 = ((px - a[0])*(c[1] - a[1]) - (c[0] - a[0])*(py - a[1]))/det;
-        const scalar l2 = ((b[0] - a[0])*(py - a[1]) - (px - a[0])*(b[1] - a[1]))/det;
-        const scalar l0 = 1 - l1 - l2;
-        if (l0 >= -tol && l1 >= -tol && l2 >= -tol)
+        for (label el = 0; el < nElements(); ++el)
         {
-            bary[0] = l0;
-            bary[1] = l1;
-            bary[2] = l2;
-            return el;
+            if (elementLocator::contains(X_, &elemNodes_[3*el], px, py, bary))
+            {
+                return el;
+            }
         }
+        return -1;
     }
-    return -1;
+    const std::vector<scalar>& x = x_[cur_];
+    if (!locator_.valid(x, nElements(), topologyVersion_))
+    {
+        locator_.build(x, elemNodes_, nElements(), topologyVersion_);
+    }
+    return locator_.find(x, elemNodes_, px, py, bary);
 }
 
 
