@@ -72,6 +72,7 @@ namespace
 
 using testFiles::replaceEntry;
 using tutorialCases::copyTutorial;
+using tutorialCases::curveDifference;
 using tutorialCases::readTable;
 using tutorialCases::runCase;
 
@@ -537,34 +538,9 @@ TEST(SpemValidation, hydrostaticColumnOfRefinedParticlesOnElementsHasContinuousP
 namespace
 {
 
+
 //- Run damBreakElasticPlate at nx 20 with a method; expect it to reach
 //  0.4 s with the tip's peak horizontal displacement in [0.02, 0.07] m
-//- The RMS difference of curve a, interpolated linearly at the times of
-//  curve b that it covers, from b there (rows t, y, ...), and at how many
-//  times
-std::pair<double, int> curveDifference
-(
-    const std::vector<std::vector<double>>& a,
-    const std::vector<std::vector<double>>& b
-)
-{
-    double sum2 = 0;
-    int n = 0;
-    size_t k = 1;
-    for (const auto& row : b)
-    {
-        const double t = row[0];
-        if (a.size() < 2 || t < a.front()[0] || t > a.back()[0]) continue;
-        while (k + 1 < a.size() && a[k][0] < t) ++k;
-        const double w = (t - a[k - 1][0])/(a[k][0] - a[k - 1][0]);
-        const double ya = (1 - w)*a[k - 1][1] + w*a[k][1];
-        sum2 += (ya - row[1])*(ya - row[1]);
-        ++n;
-    }
-    return {std::sqrt(sum2/std::max(n, 1)), n};
-}
-
-
 void damBreakElasticPlate(const std::string& method)
 {
     const fs::path caseDir =

@@ -64,6 +64,7 @@ namespace
 
 using testFiles::replaceEntry;
 using tutorialCases::copyTutorial;
+using tutorialCases::curveDifference;
 using tutorialCases::readTable;
 using tutorialCases::runCase;
 
@@ -209,31 +210,6 @@ forcePeaks peaks(const std::vector<std::vector<double>>& rows, const double w)
     return p;
 }
 
-//- RMS difference of column col of table a from that of table b at b's
-//  sample times (a interpolated linearly, up to a's end)
-double curveDifference
-(
-    const std::vector<std::vector<double>>& a,
-    const std::vector<std::vector<double>>& b,
-    const std::size_t col
-)
-{
-    double sum = 0;
-    int n = 0;
-    std::size_t k = 1;
-    for (const auto& r : b)
-    {
-        const double t = r[0];
-        if (t < a.front()[0] || t > a.back()[0]) continue;
-        while (k + 1 < a.size() && a[k][0] < t) ++k;
-        const double w = (t - a[k - 1][0])/(a[k][0] - a[k - 1][0]);
-        const double f = a[k - 1][col] + w*(a[k][col] - a[k - 1][col]);
-        sum += (f - r[col])*(f - r[col]);
-        ++n;
-    }
-    return n ? std::sqrt(sum/n) : 0;
-}
-
 } // End anonymous namespace
 
 
@@ -267,8 +243,8 @@ TEST(WedgeWaterEntry, multiResolutionPeakForceAsSPEMAtTheSameLocalResolution)
     ASSERT_GT(coarseSpem.size(), 20u) << "the coarse SPEM run failed";
 
     const forcePeaks m = peaks(multi, 1e-3), s = peaks(spem, 1e-3);
-    const double rmsMulti = curveDifference(multi, spem, 5);
-    const double rmsCoarse = curveDifference(coarseSpem, spem, 5);
+    const double rmsMulti = curveDifference(multi, spem, 5).first;
+    const double rmsCoarse = curveDifference(coarseSpem, spem, 5).first;
     const double dRaw = m.raw/s.raw - 1, dMean = m.mean/s.mean - 1;
     std::printf
     (
