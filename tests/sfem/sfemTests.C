@@ -343,7 +343,8 @@ TEST(ESFEM, locateFindsWhatAPassOverEveryElementFindsWhileTheMeshMovesAndConvert
     ASSERT_TRUE(em->evaluate());
     check("at the start");
     // Small steps: the grid is rebuilt only when a node has moved by 0.9
-    // of half an element (0.037 m); the speeds are up to about 1 m/s
+    // of half an element (0.9 x 0.5 x sqrt(1/288) = 0.0265 m); the
+    // speeds are up to about 1.35 m/s
     const scalar dt = 0.5*em->stableDeltaT();
     const label builds0 = em->locatorBuilds();
     scalar t = 0;
@@ -357,9 +358,11 @@ TEST(ESFEM, locateFindsWhatAPassOverEveryElementFindsWhileTheMeshMovesAndConvert
     }
     EXPECT_EQ(em->locatorBuilds(), builds0) << "rebuilt after small moves";
     check("after 5 mm");
-    for (label k = 1; k <= 4; ++k)
+    // Checked every 2.5 ms, so that grids up to their limit (0.5 to 0.9 of
+    // the margin moved) are asked too, not only fresh ones
+    for (label k = 1; k <= 40; ++k)
     {
-        while (t < 0.005 + 0.025*k)
+        while (t < 0.005 + 0.0025*k)
         {
             ASSERT_TRUE(em->advance(dt));
             ASSERT_TRUE(em->evaluate());
@@ -367,12 +370,22 @@ TEST(ESFEM, locateFindsWhatAPassOverEveryElementFindsWhileTheMeshMovesAndConvert
         }
         check("while shearing");
     }
-    EXPECT_GT(em->locatorBuilds(), builds0) << "never rebuilt while moving";
+    EXPECT_GT(em->locatorBuilds(), builds0 + 2) << "not rebuilt while moving";
     // Elements taken out (conversion): the grid must not keep them
-    std::vector<label> some;
-    for (label t = 0; t < mesh.nTriangles(); t += 3) some.push_back(t);
+    std::vector<label> some, others;
+    for (label tri = 0; tri < mesh.nTriangles(); tri += 3)
+    {
+        some.push_back(tri);
+        others.push_back(tri + 1);
+    }
     em->removeTriangles(mesh, some);
     check("after removing a third of the triangles");
+    // Put back and as many others out, with no query between: the same
+    // element count, other elements (the topology version, not the count,
+    // must tell the grid)
+    em->restoreTriangles(mesh, some);
+    em->removeTriangles(mesh, others);
+    check("after removing as many others");
 }
 
 

@@ -221,7 +221,9 @@ forcePeaks peaks(const std::vector<std::vector<double>>& rows, const double w)
 // = 34.6, rounded to 35. The bound: peak vertical force within 5 %.
 // The force carries the impact's acoustic ringing (c = 100 m/s, single
 // samples scatter by tens of per cent): the peak of the 1 ms mean (the
-// tutorial's plot averages over 1 ms) is asserted with the peak sample.
+// tutorial's plot averages over 1 ms) is asserted; the peak sample
+// (-3.94 % today) is printed, not asserted, being one sample of that
+// noise.
 // The peak alone hardly depends on the resolution (SPEM at nx 20 has it
 // within 4 % too, and the ringing makes the force curves differ by 13-14 %
 // of the peak RMS whatever the method), so the wedge's speed, the force's
@@ -241,6 +243,10 @@ TEST(WedgeWaterEntry, multiResolutionPeakForceAsSPEMAtTheSameLocalResolution)
 
     const auto coarseSpem = wedgeForce("SPEM", coarse, "wedgeEntryCoarseSPEM");
     ASSERT_GT(coarseSpem.size(), 20u) << "the coarse SPEM run failed";
+    for (const auto* rows : {&multi, &spem, &coarseSpem})
+    {
+        for (const auto& row : *rows) ASSERT_GE(row.size(), 10u);
+    }
 
     const forcePeaks m = peaks(multi, 1e-3), s = peaks(spem, 1e-3);
     const double rmsMulti = curveDifference(multi, spem, 5).first;
@@ -265,7 +271,6 @@ TEST(WedgeWaterEntry, multiResolutionPeakForceAsSPEMAtTheSameLocalResolution)
         << "the refined particles bring the wedge's speed no closer to the"
            " fine run's than the coarse elements alone";
     EXPECT_LT(std::abs(dMean), 0.05);
-    EXPECT_LT(std::abs(dRaw), 0.05);
 }
 
 

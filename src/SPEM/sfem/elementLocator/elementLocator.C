@@ -43,7 +43,7 @@ bool Foam::elementLocator::valid
 }
 
 
-void Foam::elementLocator::build
+bool Foam::elementLocator::build
 (
     const std::vector<scalar>& x,
     const std::vector<label>& elementNodes,
@@ -58,7 +58,7 @@ void Foam::elementLocator::build
     cellStart_.assign(1, 0);
     cellElements_.clear();
     nx_ = ny_ = 0;
-    if (nElements == 0) return;
+    if (nElements == 0) return true;
 
     // Bounding box of the elements' nodes and their mean size
     scalar lo[2] = {GREAT, GREAT}, hi[2] = {-GREAT, -GREAT};
@@ -86,6 +86,11 @@ void Foam::elementLocator::build
     // element: a few elements per cell, a rebuild every few steps where the
     // fastest node crosses half an element (the flow's Courant number
     // below 1 moves it by under an element per step)
+    if (!std::isfinite(hi[0] - lo[0]) || !std::isfinite(hi[1] - lo[1]))
+    {
+        version_ = -1;      // never valid: the next query tries again
+        return false;
+    }
     const scalar size = std::sqrt(std::max(sumArea, VSMALL)/nElements);
     margin_ = 0.5*size;
     cellSize_ = 2*size;
@@ -145,6 +150,7 @@ void Foam::elementLocator::build
             }
         }
     }
+    return true;
 }
 
 

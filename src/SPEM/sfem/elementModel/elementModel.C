@@ -1295,23 +1295,24 @@ Foam::label Foam::elementModel::locate
     scalar bary[3]
 ) const
 {
-    if (reference)
+    const std::vector<scalar>& x = reference ? X_ : x_[cur_];
+    const bool gridded =
+        !reference
+     && (
+            locator_.valid(x, nElements(), topologyVersion_)
+         || locator_.build(x, elemNodes_, nElements(), topologyVersion_)
+        );
+    if (gridded) return locator_.find(x, elemNodes_, px, py, bary);
+    // The reference configuration (asked once per probe), or nodes that
+    // are not finite: every element
+    for (label el = 0; el < nElements(); ++el)
     {
-        for (label el = 0; el < nElements(); ++el)
+        if (elementLocator::contains(x, &elemNodes_[3*el], px, py, bary))
         {
-            if (elementLocator::contains(X_, &elemNodes_[3*el], px, py, bary))
-            {
-                return el;
-            }
+            return el;
         }
-        return -1;
     }
-    const std::vector<scalar>& x = x_[cur_];
-    if (!locator_.valid(x, nElements(), topologyVersion_))
-    {
-        locator_.build(x, elemNodes_, nElements(), topologyVersion_);
-    }
-    return locator_.find(x, elemNodes_, px, py, bary);
+    return -1;
 }
 
 
