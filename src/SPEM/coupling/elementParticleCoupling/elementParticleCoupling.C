@@ -283,6 +283,7 @@ void Foam::elementParticleCoupling::setGhosts
     const scalar kappa = particles.kernel().support();
 
     ghostElement_.clear();
+    ghostCorner_.clear();
     ghostX_.clear();
     ghostV_.clear();
     ghostRho_.clear();
@@ -397,20 +398,17 @@ void Foam::elementParticleCoupling::setGhosts
                 scalar gx, gy, hg;
                 candidate(el, k, gx, gy, hg);
                 ghostElement_.push_back(el);
+                ghostCorner_.push_back(split ? k : -1);
                 ghostX_.push_back(gx);
                 ghostX_.push_back(gy);
-                // Eq. (21): the node's velocity; eq. (17) with equal nodal
-                // shares: their mean
-                ghostV_.push_back
-                (
-                    split ? v[2*n[k]] : (v[2*n[0]] + v[2*n[1]] + v[2*n[2]])/3
-                );
-                ghostV_.push_back
-                (
-                    split
-                  ? v[2*n[k] + 1]
-                  : (v[2*n[0] + 1] + v[2*n[1] + 1] + v[2*n[2] + 1])/3
-                );
+                // Eq. (17) with equal nodal shares: the nodes' mean. A
+                // split ghost at (x_k + x_c)/2 moves at (v_k + v_c)/2, and
+                // that is the velocity it carries (see Description)
+                const scalar uc = (v[2*n[0]] + v[2*n[1]] + v[2*n[2]])/3;
+                const scalar vc =
+                    (v[2*n[0] + 1] + v[2*n[1] + 1] + v[2*n[2] + 1])/3;
+                ghostV_.push_back(split ? 0.5*(v[2*n[k]] + uc) : uc);
+                ghostV_.push_back(split ? 0.5*(v[2*n[k] + 1] + vc) : vc);
                 // Eqs. (18, 20)
                 ghostRho_.push_back(mass[el]/area[el]);
                 ghostM_.push_back(split ? mass[el]/3 : mass[el]);
@@ -512,10 +510,14 @@ void Foam::elementParticleCoupling::ghostReaction
         const label* n = &nodes[3*ghostElement_[g]];
         for (label a = 0; a < 3; ++a)
         {
-            f[2*n[a]] += F[2*g]/3;
-            f[2*n[a] + 1] += F[2*g + 1]/3;
-            added[0] += F[2*g]/3;
-            added[1] += F[2*g + 1]/3;
+            // d x_g/d x_a: 1/3 at the centroid; at (x_k + x_c)/2, 2/3
+            // for node k and 1/6 for the others
+            const scalar w =
+                ghostCorner_[g] < 0 ? 1.0/3 : (a == ghostCorner_[g] ? 2.0/3 : 1.0/6);
+            f[2*n[a]] += w*F[2*g];
+            f[2*n[a] + 1] += w*F[2*g + 1];
+            added[0] += w*F[2*g];
+            added[1] += w*F[2*g + 1];
         }
     }
 }
