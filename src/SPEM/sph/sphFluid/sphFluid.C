@@ -84,16 +84,14 @@ namespace
         const scalar gxw,
         const scalar gyw,
         const scalar* __restrict__ m,
-        const scalar* __restrict__ rho,
-        const scalar* __restrict__ p,
+        const scalar* __restrict__ pr,
         const particleSet::kind* __restrict__ kind,
         const scalar* __restrict__ C,
         scalar& fx,
         scalar& fy
     )
     {
-        const scalar rhoj = rho[j];
-        const scalar pf = -m[j]*(fi.pr + p[j]/(rhoj*rhoj));
+        const scalar pf = -m[j]*(fi.pr + pr[j]);
         if (C)
         {
             const bool corrected = kind[j] == particleSet::kind::fluid;
@@ -113,10 +111,10 @@ namespace
 
     //- Eq. (16): the acceleration of fluid particle i due to particle j,
     //  pressure and viscous terms, with (dx, dy) = x_i - x_j at distance
-    //  r; its pressure part in (fpx, fpy). Shared by the momentum pass
-    //  and the reaction passes, so that a structure or a ghost gets
-    //  exactly the opposite of the fluid's pair forces.
-    template<class Kernel>
+    //  r and F = F(r, h_ij) of the kernel; its pressure part in (fpx,
+    //  fpy). Shared by the momentum pass and the reaction passes, so that
+    //  a structure or a ghost gets exactly the opposite of the fluid's
+    //  pair forces.
     inline void pairAcceleration
     (
         const fluidSide& fi,
@@ -125,10 +123,11 @@ namespace
         const scalar dy,
         const scalar r,
         const scalar hij,
+        const scalar F,
         const scalar* __restrict__ v,
         const scalar* __restrict__ m,
         const scalar* __restrict__ rho,
-        const scalar* __restrict__ p,
+        const scalar* __restrict__ pr,
         const particleSet::kind* __restrict__ kind,
         const scalar* __restrict__ C,
         const scalar mu,
@@ -138,9 +137,8 @@ namespace
         scalar& fpy
     )
     {
-        const scalar F = Kernel::F(r, hij);
         const scalar gxw = dx*F, gyw = dy*F;
-        pairPressureAcceleration(fi, j, gxw, gyw, m, rho, p, kind, C, fpx, fpy);
+        pairPressureAcceleration(fi, j, gxw, gyw, m, pr, kind, C, fpx, fpy);
         fx = fpx;
         fy = fpy;
 
@@ -667,12 +665,54 @@ void Foam::sphFluid::densityPass(const Kernel&)
     // Performance critical: every fluid particle, every step.
     const label nFluid = label(fluidIndex_.size());
     const label* __restrict__ fluid = fluidIndex_.data();
+
+    // The pairs for the momentum pass: slots for the most pairs of the
+    // last step and a margin, but not more than twice the mean (a coarse
+    // particle among fine ones can have many times the pairs of the
+    // others: it walks the cells). Growing allocates; the same count does
+    // not
+    if (pairCountMax_ > pairCapacity_)
+    {
+        const label most = std::min(pairCountMax_, 2*pairCountMean_ + 8);
+        pairCapacity_ = std::max(pairCapacity_, most + most/8 + 2);
+    }
+    const label K = pairCapacity_;
+    pairCount_.resize(nFluid);
+    if (label(pairNeighbour_.size()) < nFluid*K)
+    {
+        pairNeighbour_.resize(nFluid*K);
+        pairF_.resize(nFluid*K);
+    }
+    label* __restrict__ pairCount = pairCount_.data();
+    label* __restrict__ pairJ = pairNeighbour_.data();
+    scalar* __restrict__ pairF = pairF_.data();
+
+    // Volumes of the start of the step, once per particle (one division
+    // less per pair); a wall particle's is its fixed lattice cell, a
+    // ghost's its element's area
+    volume_.resize(particles_.size());
+    scalar* __restrict__ volume = volume_.data();
+    parallelFor
+    (
+        0, particles_.size(),
+        [=](const label j)
+        {
+            const bool fluidj = kind[j] == particleSet::kind::fluid;
+            const bool ghostj = kind[j] == particleSet::kind::ghost;
+            volume[j] = m[j]/(fluidj ? rhoOld[j] : (ghostj ? rho[j] : rho0));
+        }
+    );
+    const scalar* __restrict__ V = volume;
+
     #pragma omp parallel for schedule(static, passChunk) if(nFluid > minParallelParticles)
     for (label f = 0; f < nFluid; ++f)
     {
         const label i = fluid[f];
         const scalar vxi = v[2*i], vyi = v[2*i + 1], rhoi = rhoOld[i];
         densitySums sums;
+        label nPairs = 0;
+        label* __restrict__ slotJ = pairJ + f*K;
+        scalar* __restrict__ slotF = pairF + f*K;
 
         cells_.forEachNeighbour
         (
@@ -681,15 +721,17 @@ void Foam::sphFluid::densityPass(const Kernel&)
             {
                 const scalar hij = 0.5*(h[i] + h[j]);
                 const scalar F = Kernel::F(r, hij);
+                if (nPairs < K)
+                {
+                    slotJ[nPairs] = j;
+                    slotF[nPairs] = F;
+                }
+                ++nPairs;
                 // grad_i W_ij = (x_i - x_j) F
                 const scalar gx = dx*F, gy = dy*F;
-                // Volumes of the start of the step; a wall particle's is
-                // its fixed lattice cell, a ghost's its element's area
                 const bool fluidj = kind[j] == particleSet::kind::fluid;
                 const bool ghostj = kind[j] == particleSet::kind::ghost;
-                const scalar rhoj =
-                    fluidj ? rhoOld[j] : (ghostj ? rho[j] : rho0);
-                const scalar Vj = m[j]/rhoj;
+                const scalar Vj = V[j];
 
                 sums.addMoments(dx, dy, gx, gy, Vj);
 
@@ -709,12 +751,15 @@ void Foam::sphFluid::densityPass(const Kernel&)
                 // -2 drho F (x_j - x_i = -(dx, dy))
                 if (fluidj || ghostj)
                 {
+                    const scalar rhoj = fluidj ? rhoOld[j] : rho[j];
                     const scalar dRho =
                         (rhoj - rhoi) + (hx*dx + hy*dy);
                     sums.diffusion -= 2*dRho*F*Vj*hij;
                 }
             }
         );
+
+        pairCount[f] = nPairs;
 
         // Correction C_i (symmetric: xx, xy, yy); identity at the surface
         scalar Ci[3];
@@ -748,6 +793,14 @@ void Foam::sphFluid::densityPass(const Kernel&)
         // Eq. (7)
         p[i] = c2*(rhoNew - rho0);
     }
+    pairCountMax_ = 0;
+    label pairSum = 0;
+    for (label f = 0; f < nFluid; ++f)
+    {
+        pairCountMax_ = max(pairCountMax_, pairCount[f]);
+        pairSum += pairCount[f];
+    }
+    pairCountMean_ = nFluid > 0 ? pairSum/nFluid : 0;
 }
 
 
@@ -857,11 +910,26 @@ void Foam::sphFluid::momentumPass(const Kernel&)
     const scalar* __restrict__ h = particles_.smoothingLength().data();
     const scalar* __restrict__ rho = particles_.density().data();
     const scalar* __restrict__ p = particles_.pressure().data();
+    // p/rho^2 of every particle, once: the pairs of this pass and of the
+    // reaction passes after it read it (one division less per pair)
+    pOverRho2_.resize(particles_.size());
+    scalar* __restrict__ pOverRho2 = pOverRho2_.data();
+    parallelFor
+    (
+        0, particles_.size(),
+        [=](const label j) { pOverRho2[j] = p[j]/(rho[j]*rho[j]); }
+    );
+    const scalar* __restrict__ pr = pOverRho2_.data();
     const particleSet::kind* __restrict__ kind = particles_.kinds().data();
     const scalar* __restrict__ C = correctionData();
     scalar* __restrict__ a = acceleration_.data();
     scalar* __restrict__ aGhost = ghostAcceleration_.data();
     const scalar* __restrict__ share = wallElementShare_.data();
+    const scalar* __restrict__ x = particles_.positions().data();
+    const label K = pairCapacity_;
+    const label* __restrict__ pairCount = pairCount_.data();
+    const label* __restrict__ pairJ = pairNeighbour_.data();
+    const scalar* __restrict__ pairF = pairF_.data();
 
     const scalar mu = mu_, gx = gx_, gy = gy_, c = c_;
     const scalar nu = mu_/rho0_;
@@ -882,16 +950,21 @@ void Foam::sphFluid::momentumPass(const Kernel&)
         const fluidSide fi = makeFluidSide(i, v, rho, p, C);
         scalar ax = 0, ay = 0, wx = 0, wy = 0, gfx = 0, gfy = 0, sx = 0, sy = 0;
 
-        cells_.forEachNeighbour
-        (
-            particles_, i, kappa,
-            [&](const label j, const scalar dx, const scalar dy, const scalar r)
+        const auto pair =
+            [&]
+            (
+                const label j,
+                const scalar dx,
+                const scalar dy,
+                const scalar r,
+                const scalar F
+            )
             {
                 scalar fx, fy, fpx, fpy;
-                pairAcceleration<Kernel>
+                pairAcceleration
                 (
-                    fi, j, dx, dy, r, 0.5*(h[i] + h[j]),
-                    v, m, rho, p, kind, C, mu, fx, fy, fpx, fpy
+                    fi, j, dx, dy, r, 0.5*(h[i] + h[j]), F,
+                    v, m, rho, pr, kind, C, mu, fx, fy, fpx, fpy
                 );
                 ax += fx;
                 ay += fy;
@@ -914,8 +987,33 @@ void Foam::sphFluid::momentumPass(const Kernel&)
                     gfx += fx;
                     gfy += fy;
                 }
+            };
+        // The density pass's pairs, in its order; past the slots, the cells
+        const label nPairs = pairCount[f];
+        if (nPairs <= K)
+        {
+            const label* __restrict__ slotJ = pairJ + f*K;
+            const scalar* __restrict__ slotF = pairF + f*K;
+            const scalar xi = x[2*i], yi = x[2*i + 1];
+            for (label k = 0; k < nPairs; ++k)
+            {
+                // As forEachNeighbour computes them: the same bits
+                const label j = slotJ[k];
+                const scalar dx = xi - x[2*j], dy = yi - x[2*j + 1];
+                pair(j, dx, dy, std::sqrt(dx*dx + dy*dy), slotF[k]);
             }
-        );
+        }
+        else
+        {
+            cells_.forEachNeighbour
+            (
+                particles_, i, kappa,
+                [&](const label j, const scalar dx, const scalar dy, const scalar r)
+                {
+                    pair(j, dx, dy, r, Kernel::F(r, 0.5*(h[i] + h[j])));
+                }
+            );
+        }
 
         a[2*i] = ax + gx;
         a[2*i + 1] = ay + gy;
@@ -968,6 +1066,7 @@ void Foam::sphFluid::reactionPass
     const scalar* __restrict__ h = particles_.smoothingLength().data();
     const scalar* __restrict__ rho = particles_.density().data();
     const scalar* __restrict__ p = particles_.pressure().data();
+    const scalar* __restrict__ pr = pOverRho2_.data();
     const particleSet::kind* __restrict__ kind = particles_.kinds().data();
     const label* __restrict__ id = particles_.id().data();
     const scalar* __restrict__ C = correctionData();
@@ -1015,10 +1114,11 @@ void Foam::sphFluid::reactionPass
                 const fluidSide ff = makeFluidSide(f, v, rho, p, C);
                 scalar fx, fy, fpx, fpy;
                 // (dx, dy) = x_w - x_f; the pair needs x_f - x_w
-                pairAcceleration<Kernel>
+                const scalar hfw = 0.5*(h[f] + h[w]);
+                pairAcceleration
                 (
-                    ff, w, -dx, -dy, r, 0.5*(h[f] + h[w]),
-                    v, m, rho, p, kind, C, mu, fx, fy, fpx, fpy
+                    ff, w, -dx, -dy, r, hfw, Kernel::F(r, hfw),
+                    v, m, rho, pr, kind, C, mu, fx, fy, fpx, fpy
                 );
                 Fx -= m[f]*fx;
                 Fy -= m[f]*fy;
@@ -1039,6 +1139,7 @@ void Foam::sphFluid::wallElementPass(const Kernel&)
     const scalar* __restrict__ h = particles_.smoothingLength().data();
     const scalar* __restrict__ rho = particles_.density().data();
     const scalar* __restrict__ p = particles_.pressure().data();
+    const scalar* __restrict__ pr = pOverRho2_.data();
     const particleSet::kind* __restrict__ kind = particles_.kinds().data();
     const scalar* __restrict__ C = correctionData();
     const scalar* __restrict__ share = wallElementShare_.data();
@@ -1066,7 +1167,7 @@ void Foam::sphFluid::wallElementPass(const Kernel&)
                 scalar fpx, fpy;
                 pairPressureAcceleration
                 (
-                    ff, w, -dx*F, -dy*F, m, rho, p, kind, C, fpx, fpy
+                    ff, w, -dx*F, -dy*F, m, pr, kind, C, fpx, fpy
                 );
                 Fx -= m[f]*share[2*w]*fpx;
                 Fy -= m[f]*share[2*w]*fpy;
@@ -1595,15 +1696,16 @@ bool Foam::sphFluid::interpolatePressure
 
 std::size_t Foam::sphFluid::memoryBytes() const
 {
-    auto bytes = [](const std::vector<scalar>& f)
+    auto bytes = [](const auto& f)
     {
-        return f.capacity()*sizeof(scalar);
+        return f.capacity()*sizeof(f[0]);
     };
     return
         particles_.memoryBytes() + cells_.memoryBytes()
       + bytes(acceleration_) + bytes(correction_) + bytes(gradC_)
       + bytes(divR_) + bytes(oldPosition_) + bytes(oldVelocity_)
-      + bytes(oldDensity_);
+      + bytes(oldDensity_) + bytes(pairCount_) + bytes(pairNeighbour_)
+      + bytes(pairF_) + bytes(volume_) + bytes(pOverRho2_);
 }
 
 
