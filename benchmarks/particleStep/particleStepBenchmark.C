@@ -45,6 +45,9 @@ Description
             memory per particle for each nFluid (default 1e4 1e5 1e6); see
             memoryReport() for the method.
 
+        particleStepBenchmark -noPairCache ...
+            either of the above with sph/pairCache no (sphFluid.H)
+
     libOpenFOAM needs WM_PROJECT_DIR=/usr/share/openfoam in the environment
     before the program starts (. etc/bashrc sets it).
 
@@ -56,6 +59,7 @@ Description
 #include "sphFluid.H"
 #include "particleSet.H"
 #include "dictionary.H"
+#include "IStringStream.H"
 
 #include <malloc.h>
 #include <omp.h>
@@ -186,11 +190,16 @@ scene build(const label nFluidRequested)
     return s;
 }
 
+//- sph/pairCache of the fluid (-noPairCache: no)
+bool pairCache = true;
+
 //- The fluid of a scene (the particles are moved into it), evaluated
 //  once; nullptr (and why) if that evaluate() fails
 std::unique_ptr<sphFluid> fluid(scene& s, std::string& failure)
 {
-    const Foam::dictionary schemes;     // every default
+    // Every default, but pairCache as asked
+    Foam::IStringStream is(pairCache ? "" : "sph { pairCache no; }");
+    const Foam::dictionary schemes(is);
     std::unique_ptr<sphFluid> f
     (
         new sphFluid
@@ -466,6 +475,17 @@ int memoryReport(const std::vector<label>& sizes)
 
 int main(int argc, char** argv)
 {
+    // -noPairCache: the momentum pass walks the cells again (sphFluid.H)
+    for (int i = 1; i < argc; ++i)
+    {
+        if (std::string(argv[i]) == "-noPairCache")
+        {
+            waterBlock::pairCache = false;
+            for (int k = i; k < argc - 1; ++k) argv[k] = argv[k + 1];
+            --argc;
+            break;
+        }
+    }
     for (int i = 1; i < argc; ++i)
     {
         if (std::string(argv[i]) == "-memory")

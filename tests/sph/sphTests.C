@@ -459,6 +459,59 @@ TEST(SphFluid, stateDoesNotDependOnTheNumberOfThreads)
 }
 
 
+TEST(SphFluid, stateDoesNotDependOnThePairCache)
+{
+    // The momentum pass reads the pairs the density pass kept (pairCache
+    // yes, the default) or walks the cells again (no): the same pairs in
+    // the same order, the same F, so the same state, bit for bit, after 40
+    // steps of the water block on two threads. The first evaluation has
+    // no slots yet (every particle walks the cells), the later ones read
+    // them. The cache's memory is reported
+    const scalar dx = 0.01;
+    const label n = 80;
+    const auto run = [&](const std::string& cache, std::size_t& bytes)
+    {
+        particleSet ps =
+            waterBlockInWalls(n, dx, 3, 7, particleSet::kind::wall);
+        const scalar lo[2] = {-1, -1}, hi[2] = {2, 2};
+        sphFluid fluid
+        (
+            schemes("pairCache " + cache + ";"), std::move(ps), 1000, 20,
+            1e-3, 0, -9.81, lo, hi
+        );
+        EXPECT_TRUE(fluid.evaluate()) << fluid.failure();
+        for (int step = 0; step < 2*sphFluid::reorderInterval; ++step)
+        {
+            fluid.advance(0.9*fluid.stableDeltaT());
+            EXPECT_TRUE(fluid.evaluate()) << fluid.failure();
+        }
+        bytes = fluid.memoryBytes();
+        std::vector<scalar> state = fluid.particles().positions();
+        const std::vector<scalar>& v = fluid.particles().velocities();
+        const std::vector<scalar>& rho = fluid.particles().density();
+        state.insert(state.end(), v.begin(), v.end());
+        state.insert(state.end(), rho.begin(), rho.end());
+        return state;
+    };
+    const int threadsBefore = omp_get_max_threads();
+    omp_set_num_threads(2);
+    std::size_t withCache = 0, without = 0;
+    const std::vector<scalar> cached = run("yes", withCache);
+    const std::vector<scalar> walked = run("no", without);
+    omp_set_num_threads(threadsBefore);
+    ASSERT_EQ(cached.size(), walked.size());
+    label differ = 0;
+    for (size_t k = 0; k < cached.size(); ++k) differ += cached[k] != walked[k];
+    EXPECT_EQ(differ, 0) << "of " << cached.size() << " values";
+    std::printf
+    (
+        "pairCache: %.1f B per fluid particle with it, %.1f without\n",
+        double(withCache)/(n*n), double(without)/(n*n)
+    );
+    EXPECT_GT(withCache, without);
+}
+
+
 TEST(SphFluid, revertTakesOutTheParticlesAppendedSinceTheAdvance)
 {
     // A step that appends fluid particles (a conversion) and fails: the

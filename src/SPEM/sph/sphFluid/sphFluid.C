@@ -311,6 +311,7 @@ void Foam::sphFluid::controls::readEntries(const dictionary& d)
         );
     structureSuction =
         d.getOrDefault<Switch>("structureSuction", structureSuction);
+    pairCache = d.getOrDefault<Switch>("pairCache", pairCache);
 }
 
 
@@ -328,7 +329,7 @@ Foam::sphFluid::controls::read(const dictionary& schemesDict)
             "smoothingLengthRatio", "gradientCorrection", "densityDiffusion",
             "shifting", "freeSurfaceThreshold", "wallLayers",
             "momentumGradient", "initialRelaxation", "relaxationCoefficient",
-            "lostParticleDistance", "structureSuction"
+            "lostParticleDistance", "structureSuction", "pairCache"
         }
     );
     c.readEntries(*d);
@@ -671,12 +672,14 @@ void Foam::sphFluid::densityPass(const Kernel&)
     // particle among fine ones can have many times the pairs of the
     // others: it walks the cells). Growing allocates; the same count does
     // not
-    if (pairCountMax_ > pairCapacity_)
+    if (controls_.pairCache && pairCountMax_ > pairCapacity_)
     {
         const label most = std::min(pairCountMax_, 2*pairCountMean_ + 8);
         pairCapacity_ = std::max(pairCapacity_, most + most/8 + 2);
     }
-    const label K = pairCapacity_;
+    // Without the cache no slot: every count exceeds 0, the momentum pass
+    // walks the cells
+    const label K = controls_.pairCache ? pairCapacity_ : 0;
     pairCount_.resize(nFluid);
     if (label(pairNeighbour_.size()) < nFluid*K)
     {
@@ -926,7 +929,7 @@ void Foam::sphFluid::momentumPass(const Kernel&)
     scalar* __restrict__ aGhost = ghostAcceleration_.data();
     const scalar* __restrict__ share = wallElementShare_.data();
     const scalar* __restrict__ x = particles_.positions().data();
-    const label K = pairCapacity_;
+    const label K = controls_.pairCache ? pairCapacity_ : 0;
     const label* __restrict__ pairCount = pairCount_.data();
     const label* __restrict__ pairJ = pairNeighbour_.data();
     const scalar* __restrict__ pairF = pairF_.data();
