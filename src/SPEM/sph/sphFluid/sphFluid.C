@@ -692,22 +692,24 @@ void Foam::sphFluid::densityPass(const Kernel&)
 
     // Volumes of the start of the step, once per particle (one division
     // less per pair); a wall particle's is its fixed lattice cell, a
-    // ghost's its element's area
-    volume_.resize(particles_.size());
+    // ghost's its element's area. In the pass's parallel region: one
+    // fork and join less per step
+    const label nAll = particles_.size();
+    volume_.resize(nAll);
     scalar* __restrict__ volume = volume_.data();
-    parallelFor
-    (
-        0, particles_.size(),
-        [=](const label j)
-        {
-            const bool fluidj = kind[j] == particleSet::kind::fluid;
-            const bool ghostj = kind[j] == particleSet::kind::ghost;
-            volume[j] = m[j]/(fluidj ? rhoOld[j] : (ghostj ? rho[j] : rho0));
-        }
-    );
     const scalar* __restrict__ V = volume;
 
-    #pragma omp parallel for schedule(static, passChunk) if(nFluid > minParallelParticles)
+    #pragma omp parallel if(nFluid > minParallelParticles)
+    {
+    #pragma omp for schedule(static)
+    for (label j = 0; j < nAll; ++j)
+    {
+        const bool fluidj = kind[j] == particleSet::kind::fluid;
+        const bool ghostj = kind[j] == particleSet::kind::ghost;
+        volume[j] = m[j]/(fluidj ? rhoOld[j] : (ghostj ? rho[j] : rho0));
+    }
+
+    #pragma omp for schedule(static, passChunk)
     for (label f = 0; f < nFluid; ++f)
     {
         const label i = fluid[f];
@@ -796,6 +798,7 @@ void Foam::sphFluid::densityPass(const Kernel&)
         // Eq. (7)
         p[i] = c2*(rhoNew - rho0);
     }
+    } // End of the parallel region
     pairCountMax_ = 0;
     label pairSum = 0;
     for (label f = 0; f < nFluid; ++f)
@@ -915,14 +918,11 @@ void Foam::sphFluid::momentumPass(const Kernel&)
     const scalar* __restrict__ p = particles_.pressure().data();
     // p/rho^2 of every particle, once: the pairs of this pass and of the
     // reaction passes after it read it (one division less per pair)
-    pOverRho2_.resize(particles_.size());
+    // (in the pass's parallel region: one fork and join less per step)
+    const label nAll = particles_.size();
+    pOverRho2_.resize(nAll);
     scalar* __restrict__ pOverRho2 = pOverRho2_.data();
-    parallelFor
-    (
-        0, particles_.size(),
-        [=](const label j) { pOverRho2[j] = p[j]/(rho[j]*rho[j]); }
-    );
-    const scalar* __restrict__ pr = pOverRho2_.data();
+    const scalar* __restrict__ pr = pOverRho2;
     const particleSet::kind* __restrict__ kind = particles_.kinds().data();
     const scalar* __restrict__ C = correctionData();
     scalar* __restrict__ a = acceleration_.data();
@@ -945,7 +945,15 @@ void Foam::sphFluid::momentumPass(const Kernel&)
     std::fill(ghostAcceleration_.begin(), ghostAcceleration_.end(), 0);
     const label nFluid = label(fluidIndex_.size());
     const label* __restrict__ fluid = fluidIndex_.data();
-    #pragma omp parallel for schedule(static, passChunk) reduction(+: fwx, fwy, fgx, fgy, fsx, fsy) reduction(min: dtAcoustic, dtForce, dtViscous) if(nFluid > minParallelParticles)
+    #pragma omp parallel if(nFluid > minParallelParticles)
+    {
+    #pragma omp for schedule(static)
+    for (label j = 0; j < nAll; ++j)
+    {
+        pOverRho2[j] = p[j]/(rho[j]*rho[j]);
+    }
+
+    #pragma omp for schedule(static, passChunk) reduction(+: fwx, fwy, fgx, fgy, fsx, fsy) reduction(min: dtAcoustic, dtForce, dtViscous)
     for (label f = 0; f < nFluid; ++f)
     {
         const label i = fluid[f];
@@ -1038,6 +1046,7 @@ void Foam::sphFluid::momentumPass(const Kernel&)
             speed, acc, h[i], c, nu, dtAcoustic, dtForce, dtViscous
         );
     }
+    } // End of the parallel region
 
     wallForce_[0] = fwx;
     wallForce_[1] = fwy;
