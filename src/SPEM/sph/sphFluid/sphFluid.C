@@ -695,9 +695,9 @@ void Foam::sphFluid::densityPass(const Kernel&)
     // ghost's its element's area. In the pass's parallel region: one
     // fork and join less per step
     const label nAll = particles_.size();
+    // (one pointer, not restrict: written, then read in the same block)
     volume_.resize(nAll);
-    scalar* __restrict__ volume = volume_.data();
-    const scalar* __restrict__ V = volume;
+    scalar* volume = volume_.data();
 
     #pragma omp parallel if(nFluid > minParallelParticles)
     {
@@ -736,7 +736,7 @@ void Foam::sphFluid::densityPass(const Kernel&)
                 const scalar gx = dx*F, gy = dy*F;
                 const bool fluidj = kind[j] == particleSet::kind::fluid;
                 const bool ghostj = kind[j] == particleSet::kind::ghost;
-                const scalar Vj = V[j];
+                const scalar Vj = volume[j];
 
                 sums.addMoments(dx, dy, gx, gy, Vj);
 
@@ -920,9 +920,10 @@ void Foam::sphFluid::momentumPass(const Kernel&)
     // reaction passes after it read it (one division less per pair)
     // (in the pass's parallel region: one fork and join less per step)
     const label nAll = particles_.size();
+    // (not restrict: written, then read in the same block)
     pOverRho2_.resize(nAll);
-    scalar* __restrict__ pOverRho2 = pOverRho2_.data();
-    const scalar* __restrict__ pr = pOverRho2;
+    scalar* pOverRho2 = pOverRho2_.data();
+    const scalar* pr = pOverRho2;
     const particleSet::kind* __restrict__ kind = particles_.kinds().data();
     const scalar* __restrict__ C = correctionData();
     scalar* __restrict__ a = acceleration_.data();
