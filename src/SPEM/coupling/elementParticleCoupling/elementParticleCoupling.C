@@ -512,8 +512,8 @@ void Foam::elementParticleCoupling::ghostReaction
         {
             // d x_g/d x_a: 1/3 at the centroid; at (x_k + x_c)/2, 2/3
             // for node k and 1/6 for the others
-            const scalar w =
-                ghostCorner_[g] < 0 ? 1.0/3 : (a == ghostCorner_[g] ? 2.0/3 : 1.0/6);
+            const label k = ghostCorner_[g];
+            const scalar w = k < 0 ? 1.0/3 : (a == k ? 2.0/3 : 1.0/6);
             f[2*n[a]] += w*F[2*g];
             f[2*n[a] + 1] += w*F[2*g + 1];
             added[0] += w*F[2*g];
