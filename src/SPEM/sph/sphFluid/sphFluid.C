@@ -681,10 +681,11 @@ void Foam::sphFluid::densityPass(const Kernel&)
     // walks the cells
     const label K = controls_.pairCache ? pairCapacity_ : 0;
     pairCount_.resize(nFluid);
-    if (label(pairNeighbour_.size()) < nFluid*K)
+    const std::size_t slots = std::size_t(nFluid)*K;
+    if (pairNeighbour_.size() < slots)
     {
-        pairNeighbour_.resize(nFluid*K);
-        pairF_.resize(nFluid*K);
+        pairNeighbour_.resize(slots);
+        pairF_.resize(slots);
     }
     label* __restrict__ pairCount = pairCount_.data();
     label* __restrict__ pairJ = pairNeighbour_.data();
@@ -692,10 +693,10 @@ void Foam::sphFluid::densityPass(const Kernel&)
 
     // Volumes of the start of the step, once per particle (one division
     // less per pair); a wall particle's is its fixed lattice cell, a
-    // ghost's its element's area. In the pass's parallel region: one
-    // fork and join less per step
+    // ghost's its element's area. In the pass's parallel region (one
+    // fork and join less per step); written, then read in the same block:
+    // no restrict
     const label nAll = particles_.size();
-    // (one pointer, not restrict: written, then read in the same block)
     volume_.resize(nAll);
     scalar* volume = volume_.data();
 
@@ -716,8 +717,8 @@ void Foam::sphFluid::densityPass(const Kernel&)
         const scalar vxi = v[2*i], vyi = v[2*i + 1], rhoi = rhoOld[i];
         densitySums sums;
         label nPairs = 0;
-        label* __restrict__ slotJ = pairJ + f*K;
-        scalar* __restrict__ slotF = pairF + f*K;
+        label* __restrict__ slotJ = pairJ + std::size_t(f)*K;
+        scalar* __restrict__ slotF = pairF + std::size_t(f)*K;
 
         cells_.forEachNeighbour
         (
@@ -916,11 +917,11 @@ void Foam::sphFluid::momentumPass(const Kernel&)
     const scalar* __restrict__ h = particles_.smoothingLength().data();
     const scalar* __restrict__ rho = particles_.density().data();
     const scalar* __restrict__ p = particles_.pressure().data();
-    // p/rho^2 of every particle, once: the pairs of this pass and of the
-    // reaction passes after it read it (one division less per pair)
-    // (in the pass's parallel region: one fork and join less per step)
+    // p/rho^2 of every particle, once (one division less per pair), for
+    // this pass and the reaction passes after it; computed in the pass's
+    // parallel region (one fork and join less per step). Written, then
+    // read in the same block: no restrict
     const label nAll = particles_.size();
-    // (not restrict: written, then read in the same block)
     pOverRho2_.resize(nAll);
     scalar* pOverRho2 = pOverRho2_.data();
     const scalar* pr = pOverRho2;
@@ -1004,8 +1005,8 @@ void Foam::sphFluid::momentumPass(const Kernel&)
         const label nPairs = pairCount[f];
         if (nPairs <= K)
         {
-            const label* __restrict__ slotJ = pairJ + f*K;
-            const scalar* __restrict__ slotF = pairF + f*K;
+            const label* __restrict__ slotJ = pairJ + std::size_t(f)*K;
+            const scalar* __restrict__ slotF = pairF + std::size_t(f)*K;
             const scalar xi = x[2*i], yi = x[2*i + 1];
             for (label k = 0; k < nPairs; ++k)
             {
