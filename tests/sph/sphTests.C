@@ -417,45 +417,68 @@ TEST(SphFluid, momentumChangesOnlyByGravityAndWallImpulse)
 }
 
 
+namespace
+{
+
+//- The state (positions, velocities, densities) of a water block of 80 x
+//  80 particles, spacing 0.01 m (above minParallelParticles: the passes
+//  split among threads), with random velocities on three layers of
+//  no-slip wall particles after 40 steps (two sorts by cell) on the
+//  threads set; sph entries as given; the fluid's memoryBytes() in bytes
+std::vector<scalar> steppedWaterBlock
+(
+    const std::string& sphEntries,
+    std::size_t& bytes
+)
+{
+    particleSet ps =
+        waterBlockInWalls(80, 0.01, 3, 7, particleSet::kind::wall);
+    const scalar lo[2] = {-1, -1}, hi[2] = {2, 2};
+    sphFluid fluid
+    (
+        schemes(sphEntries), std::move(ps), 1000, 20, 1e-3, 0, -9.81, lo, hi
+    );
+    EXPECT_TRUE(fluid.evaluate()) << fluid.failure();
+    for (int step = 0; step < 2*sphFluid::reorderInterval; ++step)
+    {
+        fluid.advance(0.9*fluid.stableDeltaT());
+        EXPECT_TRUE(fluid.evaluate()) << fluid.failure();
+    }
+    bytes = fluid.memoryBytes();
+    std::vector<scalar> state = fluid.particles().positions();
+    const std::vector<scalar>& v = fluid.particles().velocities();
+    const std::vector<scalar>& rho = fluid.particles().density();
+    state.insert(state.end(), v.begin(), v.end());
+    state.insert(state.end(), rho.begin(), rho.end());
+    return state;
+}
+
+
+//- How many values of two states differ at all
+label differences(const std::vector<scalar>& a, const std::vector<scalar>& b)
+{
+    label differ = 0;
+    for (size_t k = 0; k < a.size(); ++k) differ += a[k] != b[k];
+    return differ;
+}
+
+} // End anonymous namespace
+
+
 TEST(SphFluid, stateDoesNotDependOnTheNumberOfThreads)
 {
-    // A water block of 80 x 80 particles (above minParallelParticles: the
-    // passes split among threads) with random velocities on three layers
-    // of no-slip wall particles: 40 steps (two sorts by cell) on one
-    // thread and on two give the same state, bit for bit
-    const scalar dx = 0.01;
-    const label n = 80;
-    ASSERT_GT(n*n, minParallelParticles);
-    const auto run = [&](const int threads)
-    {
-        omp_set_num_threads(threads);
-        particleSet ps =
-            waterBlockInWalls(n, dx, 3, 7, particleSet::kind::wall);
-        const scalar lo[2] = {-1, -1}, hi[2] = {2, 2};
-        sphFluid fluid
-        (
-            schemes(""), std::move(ps), 1000, 20, 1e-3, 0, -9.81, lo, hi
-        );
-        EXPECT_TRUE(fluid.evaluate()) << fluid.failure();
-        for (int step = 0; step < 2*sphFluid::reorderInterval; ++step)
-        {
-            fluid.advance(0.9*fluid.stableDeltaT());
-            EXPECT_TRUE(fluid.evaluate()) << fluid.failure();
-        }
-        std::vector<scalar> state = fluid.particles().positions();
-        const std::vector<scalar>& v = fluid.particles().velocities();
-        const std::vector<scalar>& rho = fluid.particles().density();
-        state.insert(state.end(), v.begin(), v.end());
-        state.insert(state.end(), rho.begin(), rho.end());
-        return state;
-    };
+    // The water block of steppedWaterBlock, 40 steps on one thread and on
+    // two: the same state, bit for bit
+    ASSERT_GT(80*80, minParallelParticles);
     const int threadsBefore = omp_get_max_threads();
-    const std::vector<scalar> one = run(1), two = run(2);
+    std::size_t bytes = 0;
+    omp_set_num_threads(1);
+    const std::vector<scalar> one = steppedWaterBlock("", bytes);
+    omp_set_num_threads(2);
+    const std::vector<scalar> two = steppedWaterBlock("", bytes);
     omp_set_num_threads(threadsBefore);
     ASSERT_EQ(one.size(), two.size());
-    label differ = 0;
-    for (size_t k = 0; k < one.size(); ++k) differ += one[k] != two[k];
-    EXPECT_EQ(differ, 0) << "of " << one.size() << " values";
+    EXPECT_EQ(differences(one, two), 0) << "of " << one.size() << " values";
 }
 
 
@@ -463,50 +486,25 @@ TEST(SphFluid, stateDoesNotDependOnThePairCache)
 {
     // The momentum pass reads the pairs the density pass kept (pairCache
     // yes, the default) or walks the cells again (no): the same pairs in
-    // the same order, the same F, so the same state, bit for bit, after 40
-    // steps of the water block on two threads. The first evaluation has
-    // no slots yet (every particle walks the cells), the later ones read
-    // them. The cache's memory is reported
-    const scalar dx = 0.01;
-    const label n = 80;
-    const auto run = [&](const std::string& cache, std::size_t& bytes)
-    {
-        particleSet ps =
-            waterBlockInWalls(n, dx, 3, 7, particleSet::kind::wall);
-        const scalar lo[2] = {-1, -1}, hi[2] = {2, 2};
-        sphFluid fluid
-        (
-            schemes("pairCache " + cache + ";"), std::move(ps), 1000, 20,
-            1e-3, 0, -9.81, lo, hi
-        );
-        EXPECT_TRUE(fluid.evaluate()) << fluid.failure();
-        for (int step = 0; step < 2*sphFluid::reorderInterval; ++step)
-        {
-            fluid.advance(0.9*fluid.stableDeltaT());
-            EXPECT_TRUE(fluid.evaluate()) << fluid.failure();
-        }
-        bytes = fluid.memoryBytes();
-        std::vector<scalar> state = fluid.particles().positions();
-        const std::vector<scalar>& v = fluid.particles().velocities();
-        const std::vector<scalar>& rho = fluid.particles().density();
-        state.insert(state.end(), v.begin(), v.end());
-        state.insert(state.end(), rho.begin(), rho.end());
-        return state;
-    };
+    // the same order, the same F, so the same state, bit for bit, after
+    // the 40 steps of steppedWaterBlock on two threads. The first
+    // evaluation has no slots yet (every particle walks the cells), the
+    // later ones read them. The cache's memory is reported
     const int threadsBefore = omp_get_max_threads();
     omp_set_num_threads(2);
     std::size_t withCache = 0, without = 0;
-    const std::vector<scalar> cached = run("yes", withCache);
-    const std::vector<scalar> walked = run("no", without);
+    const std::vector<scalar> cached =
+        steppedWaterBlock("pairCache yes;", withCache);
+    const std::vector<scalar> walked =
+        steppedWaterBlock("pairCache no;", without);
     omp_set_num_threads(threadsBefore);
     ASSERT_EQ(cached.size(), walked.size());
-    label differ = 0;
-    for (size_t k = 0; k < cached.size(); ++k) differ += cached[k] != walked[k];
-    EXPECT_EQ(differ, 0) << "of " << cached.size() << " values";
+    EXPECT_EQ(differences(cached, walked), 0)
+        << "of " << cached.size() << " values";
     std::printf
     (
         "pairCache: %.1f B per fluid particle with it, %.1f without\n",
-        double(withCache)/(n*n), double(without)/(n*n)
+        double(withCache)/(80*80), double(without)/(80*80)
     );
     EXPECT_GT(withCache, without);
 }
