@@ -1162,7 +1162,7 @@ TEST(SpemValidation, multiResolutionInterfaceStaysQuietBelowItsCourantLimit)
     // multiResolutionSPEM and the cylinder held still, to 1.2 s: the water
     // stays at rest but for the start from the preset box. Measured, the
     // largest node speed at a write, 0.1 s apart: SPEM 0.03-0.09 m/s at
-    // maxCo 0.8; multi-resolution 0.11-0.20 m/s at 0.45 and 0.5, 0.23 at
+    // maxCo 0.8; multi-resolution 0.12-0.20 m/s at 0.45 and 0.5, 0.23 at
     // 0.6, an oscillation of the box's interface nodes from 0.7 (0.42 m/s;
     // 0.60 at 0.8, 2.09 at 1.0; 2.39 at 0.8 before the split ghosts
     // carried the velocity at which they move). The bound 0.3 m/s lies
