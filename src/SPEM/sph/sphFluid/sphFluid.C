@@ -33,20 +33,21 @@ namespace
         scalar cxx, cxy, cyy;     // C_i (momentumGradient symmetrisedCorrection)
     };
 
-    //- The correction C_i that particle i stored, or I without one
+    //- The correction C_i that particle i stored, or I without one; pr:
+    //  p/rho^2 of every particle (the momentum pass's pOverRho2_)
     inline fluidSide makeFluidSide
     (
         const label i,
         const scalar* __restrict__ v,
         const scalar* __restrict__ rho,
-        const scalar* __restrict__ p,
+        const scalar* __restrict__ pr,
         const scalar* __restrict__ C
     )
     {
         const scalar* Ci = C ? &C[3*i] : nullptr;
         return fluidSide
         {
-            v[2*i], v[2*i + 1], rho[i], p[i]/(rho[i]*rho[i]),
+            v[2*i], v[2*i + 1], rho[i], pr[i],
             Ci ? Ci[0] : 1, Ci ? Ci[1] : 0, Ci ? Ci[2] : 1
         };
     }
@@ -700,6 +701,9 @@ void Foam::sphFluid::densityPass(const Kernel&)
     volume_.resize(nAll);
     scalar* volume = volume_.data();
 
+    // The most and the sum of the pairs, for the slots of the next step
+    label countMax = 0, countSum = 0;
+
     #pragma omp parallel if(nFluid > minParallelParticles)
     {
     #pragma omp for schedule(static)
@@ -710,7 +714,7 @@ void Foam::sphFluid::densityPass(const Kernel&)
         volume[j] = m[j]/(fluidj ? rhoOld[j] : (ghostj ? rho[j] : rho0));
     }
 
-    #pragma omp for schedule(static, passChunk)
+    #pragma omp for schedule(static, passChunk) reduction(max: countMax) reduction(+: countSum)
     for (label f = 0; f < nFluid; ++f)
     {
         const label i = fluid[f];
@@ -766,6 +770,8 @@ void Foam::sphFluid::densityPass(const Kernel&)
         );
 
         pairCount[f] = nPairs;
+        countMax = max(countMax, nPairs);
+        countSum += nPairs;
 
         // Correction C_i (symmetric: xx, xy, yy); identity at the surface
         scalar Ci[3];
@@ -800,14 +806,8 @@ void Foam::sphFluid::densityPass(const Kernel&)
         p[i] = c2*(rhoNew - rho0);
     }
     } // End of the parallel region
-    pairCountMax_ = 0;
-    label pairSum = 0;
-    for (label f = 0; f < nFluid; ++f)
-    {
-        pairCountMax_ = max(pairCountMax_, pairCount[f]);
-        pairSum += pairCount[f];
-    }
-    pairCountMean_ = nFluid > 0 ? pairSum/nFluid : 0;
+    pairCountMax_ = countMax;
+    pairCountMean_ = nFluid > 0 ? countSum/nFluid : 0;
 }
 
 
@@ -960,7 +960,7 @@ void Foam::sphFluid::momentumPass(const Kernel&)
     {
         const label i = fluid[f];
         const scalar vxi = v[2*i], vyi = v[2*i + 1];
-        const fluidSide fi = makeFluidSide(i, v, rho, p, C);
+        const fluidSide fi = makeFluidSide(i, v, rho, pr, C);
         scalar ax = 0, ay = 0, wx = 0, wy = 0, gfx = 0, gfy = 0, sx = 0, sy = 0;
 
         const auto pair =
@@ -1079,7 +1079,6 @@ void Foam::sphFluid::reactionPass
     const scalar* __restrict__ m = particles_.mass().data();
     const scalar* __restrict__ h = particles_.smoothingLength().data();
     const scalar* __restrict__ rho = particles_.density().data();
-    const scalar* __restrict__ p = particles_.pressure().data();
     const scalar* __restrict__ pr = pOverRho2_.data();
     const particleSet::kind* __restrict__ kind = particles_.kinds().data();
     const label* __restrict__ id = particles_.id().data();
@@ -1125,7 +1124,7 @@ void Foam::sphFluid::reactionPass
                     }
                     return;
                 }
-                const fluidSide ff = makeFluidSide(f, v, rho, p, C);
+                const fluidSide ff = makeFluidSide(f, v, rho, pr, C);
                 scalar fx, fy, fpx, fpy;
                 // (dx, dy) = x_w - x_f; the pair needs x_f - x_w
                 const scalar hfw = 0.5*(h[f] + h[w]);
@@ -1152,7 +1151,6 @@ void Foam::sphFluid::wallElementPass(const Kernel&)
     const scalar* __restrict__ m = particles_.mass().data();
     const scalar* __restrict__ h = particles_.smoothingLength().data();
     const scalar* __restrict__ rho = particles_.density().data();
-    const scalar* __restrict__ p = particles_.pressure().data();
     const scalar* __restrict__ pr = pOverRho2_.data();
     const particleSet::kind* __restrict__ kind = particles_.kinds().data();
     const scalar* __restrict__ C = correctionData();
@@ -1175,7 +1173,7 @@ void Foam::sphFluid::wallElementPass(const Kernel&)
             [&](const label f, const scalar dx, const scalar dy, const scalar r)
             {
                 if (kind[f] != particleSet::kind::fluid) return;
-                const fluidSide ff = makeFluidSide(f, v, rho, p, C);
+                const fluidSide ff = makeFluidSide(f, v, rho, pr, C);
                 // (dx, dy) = x_w - x_f; the pair needs x_f - x_w
                 const scalar F = Kernel::F(r, 0.5*(h[f] + h[w]));
                 scalar fpx, fpy;
