@@ -162,20 +162,15 @@ void expectSameNeighbours
     }
 }
 
-//- The cell of a position, computed independently from the grid data
-label cellOf(const cellLinkedList& cells, const scalar x, const scalar y)
+//- The cell of particle k's position in the grid of its level, computed
+//  independently from the grid data
+label cellOf(const cellLinkedList& cells, const particleSet& ps, const label k)
 {
-    const label ix = std::min
-    (
-        label(std::floor((x - cells.originX())/cells.cellSize())),
-        cells.nCellsX() - 1
-    );
-    const label iy = std::min
-    (
-        label(std::floor((y - cells.originY())/cells.cellSize())),
-        cells.nCellsY() - 1
-    );
-    return iy*cells.nCellsX() + ix;
+    const cellLinkedList::levelGrid& g = cells.level(cells.levelOfParticle(k));
+    const scalar x = ps.positions()[2*k], y = ps.positions()[2*k + 1];
+    const label ix = std::min(label(std::floor((x - g.x0)/g.cellSize)), g.nx - 1);
+    const label iy = std::min(label(std::floor((y - g.y0)/g.cellSize)), g.ny - 1);
+    return g.cellBase + iy*g.nx + ix;
 }
 
 //- Restores the number of OpenMP threads at the end of a scope
@@ -270,10 +265,7 @@ TEST(ParticleSet, reorderBySortOrderKeepsEachParticlesDataTogether)
         {
             ASSERT_EQ(cells.cellParticles()[k], k);
             ASSERT_EQ(cells.cellOfParticle(k), c);
-            ASSERT_EQ
-            (
-                cellOf(cells, ps.positions()[2*k], ps.positions()[2*k + 1]), c
-            ) << "particle " << k;
+            ASSERT_EQ(cellOf(cells, ps, k), c) << "particle " << k;
         }
     }
     EXPECT_GT(nonEmpty, 10);
@@ -362,6 +354,166 @@ TEST(ParticleNeighbourSearch, equalsBruteForceForParticlesOfMixedSize)
     (
         searchEach(cells, ps, 1.3), bruteForce(ps, 1.3), "kappa 1.3"
     );
+}
+
+
+TEST(ParticleNeighbourSearch, finerParticlesScanCellsOfTheirOwnSize)
+{
+    // Coarse particles (spacing d, h = 1.3 d) beside fine ones (d/4) and a
+    // strip of medium ones (d/2) between them, each lattice jittered by a
+    // tenth of its spacing: a refined region beside coarse particles, as
+    // in multi-resolution SPEM or on a graded mesh
+    const scalar d = 0.04;
+    particleSet ps(0);
+    std::mt19937 gen(17);
+    std::uniform_real_distribution<scalar> jitter(-0.1, 0.1);
+    const auto lattice = [&](scalar x0, scalar x1, scalar y1, scalar dx)
+    {
+        for (scalar y = 0.5*dx; y < y1; y += dx)
+        {
+            for (scalar x = x0 + 0.5*dx; x < x1; x += dx)
+            {
+                ps.append
+                (
+                    x + dx*jitter(gen), y + dx*jitter(gen), 0, 0, 1000, 0,
+                    1000*dx*dx, 1.3*dx, particleSet::kind::fluid, 0
+                );
+            }
+        }
+    };
+    lattice(0, 0.6, 0.5, d);
+    lattice(0.6, 0.7, 0.5, d/2);
+    lattice(0.7, 1.0, 0.5, d/4);
+    // and a patch 64 times finer among the coarse ones (levels 3-5
+    // empty): a coarse particle scans some 130 of its rows, more than
+    // one batch of forEachNeighbour
+    for (label k = 0; k < 256; ++k)
+    {
+        const scalar dx = d/64;
+        ps.append
+        (
+            0.3 + dx*(k % 16 + 0.5 + jitter(gen)),
+            0.2 + dx*(k/16 + 0.5 + jitter(gen)), 0, 0, 1000, 0,
+            1000*dx*dx, 1.3*dx, particleSet::kind::fluid, 0
+        );
+    }
+    const label n = ps.size();
+
+    cellLinkedList cells, single(cellLinkedList::defaultMaxCellsPerParticle,
+        cellLinkedList::defaultExtraCells, 1);
+    cells.update(ps, kappa*ps.maxSmoothingLength());
+    single.update(ps, kappa*ps.maxSmoothingLength());
+    ASSERT_EQ(cells.nLevels(), 4);
+    ASSERT_EQ(single.nLevels(), 1);
+    for (label l = 0; l < 4; ++l)
+    {
+        EXPECT_NEAR
+        (
+            cells.level(l).cellSize, kappa*1.3*d/(l < 3 ? 1 << l : 64), 1e-9
+        ) << "level " << l;
+    }
+
+    // Every neighbour is found, from every level, and the sort order is a
+    // permutation that keeps the search right
+    const std::vector<std::vector<label>> exact = bruteForce(ps, kappa);
+    expectSameNeighbours(searchEach(cells, ps, kappa), exact, "levels");
+    expectSameNeighbours(searchEach(single, ps, kappa), exact, "one grid");
+    std::vector<label> start, neighbours;
+    cells.buildNeighbourLists(ps, kappa, start, neighbours);
+    expectSameNeighbours(rows(start, neighbours), exact, "neighbour lists");
+    particleSet sorted = ps;
+    sorted.reorder(cells.sortOrder());
+    cells.particlesReordered();
+    expectSameNeighbours
+    (
+        searchEach(cells, sorted, kappa), bruteForce(sorted, kappa),
+        "after the reorder"
+    );
+    for (label k = 0; k < n; ++k)
+    {
+        // h = 1.3 d, 1.3 d/2, 1.3 d/4, 1.3 d/64: levels 0, 1, 2, 3
+        const scalar hk = sorted.smoothingLength()[k];
+        ASSERT_EQ
+        (
+            cells.levelOfParticle(k),
+            hk > d ? 0 : (hk > 0.5*d ? 1 : (hk > 0.1*d ? 2 : 3))
+        ) << "particle " << k;
+        ASSERT_EQ(cells.cellOfParticle(k), cellOf(cells, sorted, k))
+            << "particle " << k;
+    }
+
+    // The point searches of the coupling: every particle in the support
+    // of a point, and every particle within the pair reach of a point of
+    // a coarser, equal or finer smoothing length
+    const std::vector<scalar>& x = sorted.positions();
+    const std::vector<scalar>& h = sorted.smoothingLength();
+    std::uniform_real_distribution<scalar> ux(-0.1, 1.1), uy(-0.1, 0.6);
+    for (label p = 0; p < 300; ++p)
+    {
+        const scalar px = ux(gen), py = uy(gen);
+        for (const scalar hPoint : {0.3*d, 1.3*d, 4*d})
+        {
+            std::vector<label> found, foundNear, want, wantNear;
+            cells.forEachParticleInReach
+            (
+                sorted, px, py, hPoint, kappa,
+                [&](label j, scalar, scalar, scalar) { found.push_back(j); }
+            );
+            cells.forEachParticleNear
+            (
+                sorted, px, py, kappa,
+                [&](label j, scalar, scalar, scalar) { foundNear.push_back(j); }
+            );
+            for (label j = 0; j < n; ++j)
+            {
+                const scalar r = std::hypot(px - x[2*j], py - x[2*j + 1]);
+                if (r < 0.5*kappa*(hPoint + h[j])) want.push_back(j);
+                if (r < kappa*h[j]) wantNear.push_back(j);
+            }
+            std::sort(found.begin(), found.end());
+            std::sort(foundNear.begin(), foundNear.end());
+            ASSERT_EQ(found, want) << "point " << p << ", h " << hPoint;
+            ASSERT_EQ(foundNear, wantNear) << "point " << p;
+        }
+    }
+
+    // What each particle tests: with one grid sized for the coarse h a
+    // fine particle tests the fine particles of 3x3 cells of 2.6 d, up to
+    // 16 x 61 = 970 of them (measured: 615 on average, the region being
+    // narrow), for about 19 neighbours; in cells of its own size about 61
+    // (measured: 60), and of the coarser levels the few within its reach
+    scalar fine[2] = {0, 0}, all[2] = {0, 0};
+    label nFine = 0, nNeighbours = 0;
+    for (label i = 0; i < n; ++i)
+    {
+        const label byLevels = cells.nCandidates(sorted, i, kappa);
+        const label oneGrid = single.nCandidates(ps, i, kappa);
+        all[0] += byLevels;
+        all[1] += oneGrid;
+        const scalar hOne = ps.smoothingLength()[i];
+        const scalar hLevels = sorted.smoothingLength()[i];
+        if (hOne < 0.5*d && hOne > 0.1*d)
+        {
+            fine[1] += oneGrid;
+            ++nFine;
+        }
+        if (hLevels < 0.5*d && hLevels > 0.1*d)
+        {
+            fine[0] += byLevels;
+            nNeighbours += label(exact[sorted.id()[i]].size());
+        }
+    }
+    std::printf
+    (
+        "%d particles, %d fine: a fine particle tests %.0f particles in the"
+        " levels' cells, %.0f in one grid, for %.1f neighbours; all"
+        " particles %.0f and %.0f\n",
+        n, nFine, fine[0]/nFine, fine[1]/nFine, scalar(nNeighbours)/nFine,
+        all[0]/n, all[1]/n
+    );
+    EXPECT_LT(fine[0], 0.25*fine[1]);
+    EXPECT_LT(fine[0]/nFine, 5*scalar(nNeighbours)/nFine);
+    EXPECT_LT(all[0], 0.5*all[1]);
 }
 
 

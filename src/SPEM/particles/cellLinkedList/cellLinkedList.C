@@ -106,7 +106,7 @@ std::string Foam::cellLinkedList::farParticleMessage
         << particles.velocities()[2*far + 1] << ") has flown away:"
         << " it is " << farDist << " m from the median particle position ("
         << median[0] << ' ' << median[1] << ") and the grid of cells of size "
-        << cellSize_ << " over the bounding box of the " << n
+        << levels_[0].cellSize << " over the bounding box of the " << n
         << " particles would need " << nCells << " cells, more than the"
         << " limit of " << maxCells << " (" << maxCellsPerParticle_
         << " per particle + " << extraCells_ << "). The time step is"
@@ -128,10 +128,11 @@ void Foam::cellLinkedList::checkSupport
             << " particles, the set has " << particles.size()
             << ": call update() first" << exit(FatalError);
     }
-    if (kappa*hMax_ > cellSize_)
+    // The finer levels' cells are in proportion to their largest h
+    if (kappa*hMax_ > levels_[0].cellSize)
     {
         FatalErrorInFunction
-            << "Cells of size " << cellSize_ << " cannot hold every"
+            << "Cells of size " << levels_[0].cellSize << " cannot hold every"
             << " neighbour for support radius kappa max(h) = " << kappa
             << " x " << hMax_ << " = " << kappa*hMax_
             << ": update() with a cell size >= kappa max(h)"
@@ -145,21 +146,21 @@ void Foam::cellLinkedList::checkSupport
 Foam::cellLinkedList::cellLinkedList
 (
     const label maxCellsPerParticle,
-    const label extraCells
+    const label extraCells,
+    const label levelLimit
 )
 :
     maxCellsPerParticle_(maxCellsPerParticle),
     extraCells_(extraCells),
+    levelLimit_(std::max(label(1), std::min(levelLimit, maxLevels))),
     nParticles_(0),
-    x0_(0),
-    y0_(0),
-    cellSize_(1),
-    invCellSize_(1),
-    nx_(1),
-    ny_(1),
+    nCells_(1),
     hMax_(0),
     cellStart_(2, 0)
-{}
+{
+    levels_.reserve(maxLevels);
+    levels_.push_back(levelGrid{0, 0, 1, 1, 1, 1, 0, 0});
+}
 
 
 // * * * * * * * * * * * * * * * Member Functions  * * * * * * * * * * * * * //
@@ -196,8 +197,7 @@ bool Foam::cellLinkedList::tryUpdate
     if (!sizeGrid(particles, cellSize)) return false;
 
     const label n = particles.size();
-    const label nCells = nx_*ny_;
-    resizeWithSlack(cellStart_, nCells + 1);
+    resizeWithSlack(cellStart_, nCells_ + 1);
     resizeWithSlack(cellParticles_, n);
     resizeWithSlack(particleCell_, n);
 
@@ -219,12 +219,13 @@ bool Foam::cellLinkedList::sizeGrid
     const scalar* __restrict__ x = particles.positions().data();
     const scalar* __restrict__ h = particles.smoothingLength().data();
 
-    // Bounding box and largest h; non-finite positions are counted, not
-    // reported here (no exception may leave a parallel region)
+    // Bounding box and the range of h; non-finite positions are counted,
+    // not reported here (no exception may leave a parallel region)
     constexpr scalar big = std::numeric_limits<scalar>::max();
     scalar xMin = big, yMin = big, xMax = -big, yMax = -big, hMax = 0;
+    scalar hMin = big;
     label nNonFinite = 0;
-    #pragma omp parallel for schedule(static) reduction(min: xMin, yMin) reduction(max: xMax, yMax, hMax) reduction(+: nNonFinite) if(n > minParallelLoop)
+    #pragma omp parallel for schedule(static) reduction(min: xMin, yMin, hMin) reduction(max: xMax, yMax, hMax) reduction(+: nNonFinite) if(n > minParallelLoop)
     for (label i = 0; i < n; ++i)
     {
         const scalar xi = x[2*i], yi = x[2*i + 1];
@@ -238,6 +239,7 @@ bool Foam::cellLinkedList::sizeGrid
         yMin = std::min(yMin, yi);
         yMax = std::max(yMax, yi);
         hMax = std::max(hMax, h[i]);
+        hMin = std::min(hMin, h[i]);
     }
 
     nParticles_ = 0;
@@ -250,28 +252,151 @@ bool Foam::cellLinkedList::sizeGrid
     {
         xMin = xMax = yMin = yMax = 0;
     }
+    hMax_ = hMax;
 
-    cellSize_ = cellSize*(1 + cellSizeMargin);
-    invCellSize_ = 1/cellSize_;
+    // Several levels only where the smoothing lengths differ by more than
+    // a factor 2
+    if
+    (
+        levelLimit_ > 1 && n > 0 && hMax > 0 && hMin <= 0.5*hMax
+     && sizeLevels(particles, cellSize, hMin)
+    )
+    {
+        return failure_.empty();
+    }
+    particleLevel_.clear();
+
+    levelGrid g;
+    g.cellSize = cellSize*(1 + cellSizeMargin);
+    g.invCellSize = 1/g.cellSize;
 
     // Cell counts in floating point first: a far particle must not
     // overflow the integer count. An index is floor((x - x0)/cellSize), so
     // the particle at the upper bound is in the last cell.
-    const scalar nxReal = std::floor((xMax - xMin)*invCellSize_) + 1;
-    const scalar nyReal = std::floor((yMax - yMin)*invCellSize_) + 1;
+    const scalar nxReal = std::floor((xMax - xMin)*g.invCellSize) + 1;
+    const scalar nyReal = std::floor((yMax - yMin)*g.invCellSize) + 1;
     const scalar maxCells =
         scalar(maxCellsPerParticle_)*n + scalar(extraCells_);
     if (!(nxReal*nyReal <= maxCells))
     {
+        levels_.resize(1);
+        levels_[0].cellSize = g.cellSize;
         failure_ = farParticleMessage(particles, nxReal*nyReal, maxCells);
         return false;
     }
 
-    x0_ = xMin;
-    y0_ = yMin;
-    nx_ = label(nxReal);
-    ny_ = label(nyReal);
-    hMax_ = hMax;
+    g.x0 = xMin;
+    g.y0 = yMin;
+    g.nx = label(nxReal);
+    g.ny = label(nyReal);
+    g.cellBase = 0;
+    g.hMax = hMax;
+    levels_.resize(1);
+    levels_[0] = g;
+    nCells_ = g.nx*g.ny;
+    return true;
+}
+
+
+bool Foam::cellLinkedList::sizeLevels
+(
+    const particleSet& particles,
+    const scalar cellSize,
+    const scalar hMin
+)
+{
+    const label n = particles.size();
+    const scalar* __restrict__ x = particles.positions().data();
+    const scalar* __restrict__ h = particles.smoothingLength().data();
+    const scalar hMax = hMax_;
+
+    // Level of each particle: max(h)/2^(l+1) < h <= max(h)/2^l (exact: a
+    // power of 2 scales without rounding)
+    const label nLevels = std::min
+    (
+        levelLimit_, label(std::floor(std::log2(hMax/hMin))) + 1
+    );
+    const auto levelOf = [nLevels, hMax](const scalar hi)
+    {
+        label l = 0;
+        for (scalar bound = 0.5*hMax; l < nLevels - 1 && hi <= bound; ++l)
+        {
+            bound *= 0.5;
+        }
+        return l;
+    };
+    constexpr scalar big = std::numeric_limits<scalar>::max();
+    scalar box[maxLevels][4];
+    scalar hLevel[maxLevels];
+    label count[maxLevels];
+    for (label l = 0; l < maxLevels; ++l)
+    {
+        box[l][0] = box[l][1] = big;
+        box[l][2] = box[l][3] = -big;
+        hLevel[l] = 0;
+        count[l] = 0;
+    }
+    // One serial pass for the grids (a few operations a particle, only for
+    // mixed sizes); the levels are stored once the grids are accepted
+    for (label i = 0; i < n; ++i)
+    {
+        const label l = levelOf(h[i]);
+        scalar* b = box[l];
+        b[0] = std::min(b[0], x[2*i]);
+        b[1] = std::min(b[1], x[2*i + 1]);
+        b[2] = std::max(b[2], x[2*i]);
+        b[3] = std::max(b[3], x[2*i + 1]);
+        hLevel[l] = std::max(hLevel[l], h[i]);
+        ++count[l];
+    }
+
+    // The levels present, coarsest first, numbered without gaps
+    unsigned char present[maxLevels];
+    label nPresent = 0;
+    for (label l = 0; l < nLevels; ++l)
+    {
+        present[l] = static_cast<unsigned char>(nPresent);
+        nPresent += count[l] > 0;
+    }
+    if (nPresent < 2) return false;   // one level after all: one grid
+
+    const scalar maxCells =
+        scalar(maxCellsPerParticle_)*n + scalar(extraCells_);
+    scalar totalCells = 0;
+    levels_.resize(nPresent);
+    label base = 0;
+    for (label l = 0; l < nLevels; ++l)
+    {
+        if (count[l] == 0) continue;
+        levelGrid& g = levels_[present[l]];
+        // In proportion to the level's largest h: at least kappa h_max,l
+        // when the requested size is at least kappa max(h)
+        g.cellSize = cellSize*(hLevel[l]/hMax)*(1 + cellSizeMargin);
+        g.invCellSize = 1/g.cellSize;
+        const scalar nxReal = std::floor((box[l][2] - box[l][0])*g.invCellSize) + 1;
+        const scalar nyReal = std::floor((box[l][3] - box[l][1])*g.invCellSize) + 1;
+        totalCells += nxReal*nyReal;
+        if (!(totalCells <= maxCells))
+        {
+            levels_.resize(1);
+            levels_[0].cellSize = cellSize*(1 + cellSizeMargin);
+            particleLevel_.clear();
+            failure_ = farParticleMessage(particles, totalCells, maxCells);
+            return true;   // sized, and failed: failure_ says why
+        }
+        g.x0 = box[l][0];
+        g.y0 = box[l][1];
+        g.nx = label(nxReal);
+        g.ny = label(nyReal);
+        g.cellBase = base;
+        g.hMax = hLevel[l];
+        base += g.nx*g.ny;
+    }
+    resizeWithSlack(particleLevel_, n);
+    unsigned char* __restrict__ level = particleLevel_.data();
+    #pragma omp parallel for schedule(static) if(n > minParallelLoop)
+    for (label i = 0; i < n; ++i) level[i] = present[levelOf(h[i])];
+    nCells_ = base;
     return true;
 }
 
@@ -282,21 +407,39 @@ void Foam::cellLinkedList::assignCells(const particleSet& particles)
     const scalar* __restrict__ x = particles.positions().data();
 
     label* __restrict__ cell = particleCell_.data();
-    const scalar x0 = x0_, y0 = y0_, inv = invCellSize_;
-    const label nx = nx_, ny = ny_;
+    if (particleLevel_.empty())
+    {
+        const levelGrid& g = levels_[0];
+        const scalar x0 = g.x0, y0 = g.y0, inv = g.invCellSize;
+        const label nx = g.nx, ny = g.ny;
+        #pragma omp parallel for schedule(static) if(n > minParallelLoop)
+        for (label i = 0; i < n; ++i)
+        {
+            const label ix = std::min(label((x[2*i] - x0)*inv), nx - 1);
+            const label iy = std::min(label((x[2*i + 1] - y0)*inv), ny - 1);
+            cell[i] = iy*nx + ix;
+        }
+        return;
+    }
+
+    const unsigned char* __restrict__ level = particleLevel_.data();
+    const levelGrid* __restrict__ grids = levels_.data();
     #pragma omp parallel for schedule(static) if(n > minParallelLoop)
     for (label i = 0; i < n; ++i)
     {
-        const label ix = std::min(label((x[2*i] - x0)*inv), nx - 1);
-        const label iy = std::min(label((x[2*i + 1] - y0)*inv), ny - 1);
-        cell[i] = iy*nx + ix;
+        const levelGrid& g = grids[level[i]];
+        const label ix =
+            std::min(label((x[2*i] - g.x0)*g.invCellSize), g.nx - 1);
+        const label iy =
+            std::min(label((x[2*i + 1] - g.y0)*g.invCellSize), g.ny - 1);
+        cell[i] = g.cellBase + iy*g.nx + ix;
     }
 }
 
 
 void Foam::cellLinkedList::sortByCell(const label n)
 {
-    const label nCells = nx_*ny_;
+    const label nCells = nCells_;
     const label* __restrict__ cell = particleCell_.data();
 
     // Counting sort (stable, serial: O(N) increments, a few per cent of a
@@ -329,19 +472,51 @@ void Foam::cellLinkedList::sortByCell(const label n)
 
 void Foam::cellLinkedList::particlesReordered()
 {
-    const label nCells = nx_*ny_;
     label* __restrict__ sorted = cellParticles_.data();
     label* __restrict__ cell = particleCell_.data();
+    unsigned char* __restrict__ level =
+        particleLevel_.empty() ? nullptr : particleLevel_.data();
     const label* __restrict__ start = cellStart_.data();
-    #pragma omp parallel for schedule(static) if(nCells > minParallelLoop)
-    for (label c = 0; c < nCells; ++c)
+    for (label l = 0; l < label(levels_.size()); ++l)
     {
-        for (label k = start[c]; k < start[c + 1]; ++k)
+        const levelGrid& g = levels_[l];
+        const label begin = g.cellBase, end = g.cellBase + g.nx*g.ny;
+        #pragma omp parallel for schedule(static) if(end - begin > minParallelLoop)
+        for (label c = begin; c < end; ++c)
         {
-            sorted[k] = k;
-            cell[k] = c;
+            for (label k = start[c]; k < start[c + 1]; ++k)
+            {
+                sorted[k] = k;
+                cell[k] = c;
+                if (level) level[k] = static_cast<unsigned char>(l);
+            }
         }
     }
+}
+
+
+Foam::label Foam::cellLinkedList::nCandidates
+(
+    const particleSet& particles,
+    const label i,
+    const scalar kappa
+) const
+{
+    const scalar* x = particles.positions().data();
+    const scalar* h = particles.smoothingLength().data();
+    label count = 0;
+    for (label l = 0; l < label(levels_.size()); ++l)
+    {
+        label block[4];
+        if (!neighbourBlock(x, h, i, l, kappa, block)) continue;
+        const levelGrid& g = levels_[l];
+        for (label iy = block[2]; iy <= block[3]; ++iy)
+        {
+            const label row = g.cellBase + iy*g.nx;
+            count += cellStart_[row + block[1] + 1] - cellStart_[row + block[0]];
+        }
+    }
+    return count;
 }
 
 
@@ -400,7 +575,8 @@ std::size_t Foam::cellLinkedList::memoryBytes() const
 {
     return
         capacityBytes(cellStart_) + capacityBytes(cellParticles_)
-      + capacityBytes(particleCell_);
+      + capacityBytes(particleCell_) + capacityBytes(particleLevel_)
+      + capacityBytes(levels_);
 }
 
 
