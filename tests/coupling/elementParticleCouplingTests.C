@@ -251,7 +251,10 @@ TEST(ElementParticleCoupling, exactExchangesKeepTheMomentumOfAFreeBlob)
     for
     (
         const std::string force
-      : {"balancedTraction", "interfaceReaction", "ghostReaction", "traction"}
+      : {
+            "balancedParticles", "balancedTraction", "interfaceReaction",
+            "ghostReaction", "traction"
+        }
     )
     {
         triMesh mesh = testMeshes::build({{0, 1, 0, 1, 12, 12, "water"}});

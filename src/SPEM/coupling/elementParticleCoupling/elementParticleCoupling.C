@@ -18,6 +18,7 @@ Foam::elementParticleCoupling::interfaceForceTypeNames
     {interfaceForceType::ghostReaction, "ghostReaction"},
     {interfaceForceType::traction, "traction"},
     {interfaceForceType::balancedTraction, "balancedTraction"},
+    {interfaceForceType::balancedParticles, "balancedParticles"},
 });
 
 
@@ -42,7 +43,7 @@ Foam::elementParticleCoupling::elementParticleCoupling
     interfaceForce_
     (
         refinedRadiusRatio > 0
-      ? interfaceForceType::balancedTraction
+      ? interfaceForceType::balancedParticles
       : interfaceForceType::traction
     ),
     ghostSearch_
@@ -678,6 +679,82 @@ void Foam::elementParticleCoupling::balanceTraction
 }
 
 
+void Foam::elementParticleCoupling::balanceParticles
+(
+    const elementModel& elements,
+    sphFluid& particles,
+    std::vector<scalar>& traction
+)
+{
+    // The particles' ghost forces shared to the segments as
+    // interfaceReaction shares them, reversed: R_s. The difference
+    // T_s - R_s is what the ghosts, an SPH sum, miss of the traction the
+    // elements get; summed over a connected interface (per segment it is
+    // noise that throws the particles about: see the header), the
+    // particles sharing its segments take its reverse in proportion to
+    // their shares, so that the exchange is equal and opposite and the
+    // elements keep eq. (25)'s load
+    const particleSet& ps = particles.particles();
+    const std::vector<scalar>& aGhost = particles.ghostAccelerations();
+    const label nSegments = nInterfaceSegments();
+    shares_.clear();
+    forEachInterfaceShare
+    (
+        elements, particles,
+        [&](const label i, const label s, const scalar w)
+        {
+            shares_.push_back(interfaceShare{i, s, w});
+        }
+    );
+    reactionForce_.assign(2*nSegments, 0);
+    shareSum_.assign(nSegments, 0);
+    for (const interfaceShare& sh : shares_)
+    {
+        const scalar m = ps.mass()[sh.i];
+        reactionForce_[2*sh.s] -= sh.w*m*aGhost[2*sh.i];
+        reactionForce_[2*sh.s + 1] -= sh.w*m*aGhost[2*sh.i + 1];
+        shareSum_[sh.s] += sh.w;
+    }
+    // Per connected interface c: D_c = sum_s (T_s - R_s) over the weight
+    // of all its shares; an interface no particle shares has no ghost
+    // force to balance: its traction (from particles in reach of its nodes
+    // that touch no ghost) is dropped, so that the exchange stays equal
+    // and opposite
+    componentSum_.assign(3*nComponents_, 0);
+    for (label s = 0; s < nSegments; ++s)
+    {
+        scalar* c = &componentSum_[3*segmentComponent_[s]];
+        c[0] += traction[2*s] - reactionForce_[2*s];
+        c[1] += traction[2*s + 1] - reactionForce_[2*s + 1];
+        c[2] += shareSum_[s];
+    }
+    for (label s = 0; s < nSegments; ++s)
+    {
+        const scalar* c = &componentSum_[3*segmentComponent_[s]];
+        for (label d = 0; d < 2; ++d)
+        {
+            if (c[2] > 0)
+            {
+                reactionForce_[2*s + d] = c[d]/c[2];
+            }
+            else
+            {
+                traction[2*s + d] = reactionForce_[2*s + d];   // zero
+                reactionForce_[2*s + d] = 0;
+            }
+        }
+    }
+    particleCorrection_.assign(2*ps.size(), 0);
+    for (const interfaceShare& sh : shares_)
+    {
+        const scalar invM = 1/ps.mass()[sh.i];
+        particleCorrection_[2*sh.i] -= sh.w*reactionForce_[2*sh.s]*invM;
+        particleCorrection_[2*sh.i + 1] -= sh.w*reactionForce_[2*sh.s + 1]*invM;
+    }
+    particles.addInterfaceAcceleration(particleCorrection_);
+}
+
+
 void Foam::elementParticleCoupling::addSegmentForces
 (
     elementModel& elements,
@@ -744,6 +821,11 @@ void Foam::elementParticleCoupling::afterParticleEvaluate(couplingStep& s)
             interfaceTraction(*s.elements, *s.particles, segmentForce_);
             interfaceReaction(*s.elements, *s.particles, reactionForce_);
             balanceTraction(segmentForce_, reactionForce_);
+            addSegmentForces(*s.elements, segmentForce_, added);
+            break;
+        case interfaceForceType::balancedParticles:
+            interfaceTraction(*s.elements, *s.particles, segmentForce_);
+            balanceParticles(*s.elements, *s.particles, segmentForce_);
             addSegmentForces(*s.elements, segmentForce_, added);
             break;
     }

@@ -578,6 +578,22 @@ bool Foam::sphFluid::checkParticles()
 }
 
 
+void Foam::sphFluid::addInterfaceAcceleration(const std::vector<scalar>& a)
+{
+    const scalar* m = particles_.mass().data();
+    for (label i = 0; i < particles_.size(); ++i)
+    {
+        if (a[2*i] == 0 && a[2*i + 1] == 0) continue;
+        for (label d = 0; d < 2; ++d)
+        {
+            acceleration_[2*i + d] += a[2*i + d];
+            ghostAcceleration_[2*i + d] += a[2*i + d];
+            ghostForce_[d] -= m[i]*a[2*i + d];
+        }
+    }
+}
+
+
 void Foam::sphFluid::reorder()
 {
     const std::vector<label>& order = cells_.sortOrder();
