@@ -397,6 +397,9 @@ TEST(ParticleNeighbourSearch, finerParticlesScanCellsOfTheirOwnSize)
             1000*dx*dx, 1.3*dx, particleSet::kind::fluid, 0
         );
     }
+    // and a particle of h = 0, which reaches others only by their h: it
+    // goes with the coarsest level
+    ps.append(0.805, 0.255, 0, 0, 1000, 0, 0.01, 0, particleSet::kind::fluid, 0);
     const label n = ps.size();
 
     cellLinkedList cells, single(cellLinkedList::defaultMaxCellsPerParticle,
@@ -431,12 +434,13 @@ TEST(ParticleNeighbourSearch, finerParticlesScanCellsOfTheirOwnSize)
     );
     for (label k = 0; k < n; ++k)
     {
-        // h = 1.3 d, 1.3 d/2, 1.3 d/4, 1.3 d/64: levels 0, 1, 2, 3
+        // h = 1.3 d, 1.3 d/2, 1.3 d/4, 1.3 d/64: levels 0, 1, 2, 3; h = 0:
+        // level 0
         const scalar hk = sorted.smoothingLength()[k];
         ASSERT_EQ
         (
             cells.levelOfParticle(k),
-            hk > d ? 0 : (hk > 0.5*d ? 1 : (hk > 0.1*d ? 2 : 3))
+            hk > d || hk == 0 ? 0 : (hk > 0.5*d ? 1 : (hk > 0.1*d ? 2 : 3))
         ) << "particle " << k;
         ASSERT_EQ(cells.cellOfParticle(k), cellOf(cells, sorted, k))
             << "particle " << k;

@@ -239,7 +239,9 @@ bool Foam::cellLinkedList::sizeGrid
         yMin = std::min(yMin, yi);
         yMax = std::max(yMax, yi);
         hMax = std::max(hMax, h[i]);
-        hMin = std::min(hMin, h[i]);
+        // The finest positive h (a particle of h <= 0, which reaches
+        // others only by their h, goes with the coarsest)
+        if (h[i] > 0) hMin = std::min(hMin, h[i]);
     }
 
     nParticles_ = 0;
@@ -318,6 +320,7 @@ bool Foam::cellLinkedList::sizeLevels
     );
     const auto levelOf = [nLevels, hMax](const scalar hi)
     {
+        if (!(hi > 0)) return label(0);
         label l = 0;
         for (scalar bound = 0.5*hMax; l < nLevels - 1 && hi <= bound; ++l)
         {
