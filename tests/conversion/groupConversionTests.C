@@ -19,6 +19,7 @@ Description
 #include "IStringStream.H"
 #include "testMeshes.H"
 #include "testModels.H"
+#include "testDictionaries.H"
 
 #include <gtest/gtest.h>
 
@@ -449,6 +450,41 @@ TEST(GroupConversion, groupNextToASolidConvertsItsFluidOnly)
     const std::vector<label> converted = conversion.trianglesToConvert(*em);
     EXPECT_NE(std::find(converted.begin(), converted.end(), t0), converted.end());
     for (const label t : converted) EXPECT_FALSE(solid[t]) << t;
+}
+
+
+TEST(GroupConversion, bodyReachIsReadAndOutsideOneToTenStops)
+{
+    // conversion/bodyReach: the width of the particle layer round the
+    // bodies whose fluid elements convert, in particle supports (1 by
+    // default; below 1 elements would stand in the support of the body's
+    // dummy particles)
+    const Foam::triMesh mesh = testMeshes::build({{0, 1, 0, 1, 4, 4, "water"}});
+    const std::vector<bool> fluid(mesh.nTriangles(), true);
+    const scalar hMax = 0.3;
+    EXPECT_EQ(Foam::groupConversion(dictOf(""), mesh, fluid, hMax).bodyReach(), 1);
+    EXPECT_EQ
+    (
+        Foam::groupConversion(dictOf("bodyReach 3;"), mesh, fluid, hMax)
+       .bodyReach(),
+        3
+    );
+    for (const char* bad : {"0.5", "11"})
+    {
+        SCOPED_TRACE(bad);
+        testDictionaries::fatalIOErrorOf
+        (
+            [&]
+            {
+                Foam::groupConversion
+                (
+                    dictOf(std::string("bodyReach ") + bad + ";"), mesh, fluid,
+                    hMax
+                );
+            },
+            {"bodyReach", bad}
+        );
+    }
 }
 
 

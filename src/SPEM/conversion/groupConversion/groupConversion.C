@@ -24,6 +24,7 @@ Foam::groupConversion::groupConversion
         conversionDict.getOrDefault<scalar>("groupSizeFactor", 1.5)
     ),
     groupSize_(groupSizeFactor_*2*hMax),
+    bodyReach_(conversionDict.getOrDefault<scalar>("bodyReach", 1)),
     triangleGroup_(mesh.nTriangles(), -1)
 {
     checkKeywords
@@ -31,7 +32,7 @@ Foam::groupConversion::groupConversion
         conversionDict,
         {
             "criterion", "minInteriorAngle", "maxStretchRatio",
-            "groupSizeFactor", "presetParticleRegions",
+            "groupSizeFactor", "bodyReach", "presetParticleRegions",
             "refinedRadiusRatio"    // multiResolutionSPEM's
         }
     );
@@ -40,6 +41,13 @@ Foam::groupConversion::groupConversion
         FatalIOErrorInFunction(conversionDict)
             << "conversion/groupSizeFactor (lambda) must lie in (1, 10],"
             << " found " << groupSizeFactor_ << exit(FatalIOError);
+    }
+    if (!(bodyReach_ >= 1 && bodyReach_ <= 10))
+    {
+        FatalIOErrorInFunction(conversionDict)
+            << "conversion/bodyReach (particle supports round the bodies"
+            << " whose fluid elements convert) must lie in [1, 10], found "
+            << bodyReach_ << exit(FatalIOError);
     }
     if (!(hMax > 0))
     {
@@ -317,6 +325,10 @@ void Foam::groupConversion::describe(Ostream& os) const
     criterion_->describe(os);
     os  << ", groups of " << groupSize_ << " m (groupSizeFactor "
         << groupSizeFactor_ << "), " << nGroups() << " groups";
+    if (bodyReach_ != 1)
+    {
+        os  << ", particles " << bodyReach_ << " supports round the bodies";
+    }
     if (presetRegions_.size())
     {
         os  << ", " << presetRegions_.size() << " preset particle regions";

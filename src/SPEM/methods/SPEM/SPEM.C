@@ -301,12 +301,14 @@ std::vector<Foam::label> Foam::spemMethods::SPEM::trianglesNearBodies()
     const elementModel& em = *elements_;
     const std::vector<scalar>& x = em.positions();
     const std::vector<label>& nodes = em.elementNodes();
-    const scalar reach = bodyReach_;
     forAll(bodies, b)
     {
         const rigidBody& body = bodies[b];
         const bool slide =
             body.elementsContact() == rigidBody::elementContact::slide;
+        // convert: the layer of conversion/bodyReach supports
+        const scalar reach =
+            slide ? bodyReach_ : conversion_->bodyReach()*bodyReach_;
         const boundBox box = body.boundingBox();
         if (slide)
         {
