@@ -7,6 +7,8 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdint>
+#include <cstring>
 #include <type_traits>
 
 // * * * * * * * * * * * * * * * Static Data  * * * * * * * * * * * * * * * //
@@ -312,25 +314,28 @@ void Foam::elementParticleCoupling::setGhosts
     const bool split = refinedRadiusRatio_ > 0;
     const label perElement = split ? 3 : 1;
 
-    // Position and smoothing length of ghost k of element el
-    const auto candidate =
-        [&](const label el, const label k, scalar& gx, scalar& gy, scalar& hg)
+    // Positions and smoothing length of the ghosts of element el
+    const auto candidates =
+        [&](const label el, scalar gx[3], scalar gy[3], scalar& hg)
         {
             const label* n = &nodes[3*el];
             const scalar cx = (x[2*n[0]] + x[2*n[1]] + x[2*n[2]])/3;
             const scalar cy = (x[2*n[0] + 1] + x[2*n[1] + 1] + x[2*n[2] + 1])/3;
             if (split)
             {
-                gx = 0.5*(x[2*n[k]] + cx);
-                gy = 0.5*(x[2*n[k] + 1] + cy);
+                for (label k = 0; k < 3; ++k)
+                {
+                    gx[k] = 0.5*(x[2*n[k]] + cx);
+                    gy[k] = 0.5*(x[2*n[k] + 1] + cy);
+                }
                 hg =
                     smoothingLengthRatio_*refinedRadiusRatio_
                    *std::sqrt(area[el]);
             }
             else
             {
-                gx = cx;
-                gy = cy;
+                gx[0] = cx;
+                gy[0] = cy;
                 hg = smoothingLengthRatio_*std::sqrt(area[el]);
             }
         };
@@ -363,6 +368,78 @@ void Foam::elementParticleCoupling::setGhosts
              || gx > box[2] + d || gy > box[3] + d;
         };
 
+    // Cells of side D = kappa h_max over the box (and a cell round it),
+    // each marked if a fluid particle lies in it or in one of its eight
+    // neighbours: a ghost of h_ghost <= h_max reaches particles within
+    // kappa max(h_ghost, h_max) = D only, all in the 3x3 cells round its
+    // own, so an unmarked cell has none in reach (most ghosts in the box:
+    // a byte instead of a search). Not laid where the cells would
+    // outnumber the particles by far (particles scattered far apart)
+    // Rounding margin for the elements' test below: far above the
+    // rounding of a node mean, far below a spacing
+    const scalar boxSlack =
+        1e-9*(mag(box[0]) + mag(box[1]) + mag(box[2]) + mag(box[3]) + 1);
+
+    const scalar D = kappa*hFluid;
+    label gridNx = 0, gridNy = 0;
+    if (D > 0 && box[0] <= box[2])
+    {
+        const scalar nx = (box[2] - box[0])/D + 3, ny = (box[3] - box[1])/D + 3;
+        if (nx*ny < 4.0*ps.size() + 4096)
+        {
+            gridNx = label(nx);
+            gridNy = label(ny);
+        }
+    }
+    const scalar gridX0 = box[0] - D, gridY0 = box[1] - D;
+    const scalar invD = gridNx ? 1/D : 0;
+    if (gridNx)
+    {
+        cellHasFluid_.assign(gridNx*gridNy, 0);
+        cellNearFluid_.assign(gridNx*gridNy, 0);
+        const scalar* xp = ps.positions().data();
+        const particleSet::kind* kind = ps.kinds().data();
+        for (label j = 0; j < ps.size(); ++j)
+        {
+            if (kind[j] != particleSet::kind::fluid) continue;
+            const label ix = std::min(label((xp[2*j] - gridX0)*invD), gridNx - 1);
+            const label iy =
+                std::min(label((xp[2*j + 1] - gridY0)*invD), gridNy - 1);
+            cellHasFluid_[iy*gridNx + ix] = 1;
+        }
+        for (label iy = 0; iy < gridNy; ++iy)
+        {
+            for (label ix = 0; ix < gridNx; ++ix)
+            {
+                if (!cellHasFluid_[iy*gridNx + ix]) continue;
+                for (label jy = max(iy - 1, 0); jy <= min(iy + 1, gridNy - 1); ++jy)
+                {
+                    for
+                    (
+                        label jx = max(ix - 1, 0);
+                        jx <= min(ix + 1, gridNx - 1);
+                        ++jx
+                    )
+                    {
+                        cellNearFluid_[jy*gridNx + jx] = 1;
+                    }
+                }
+            }
+        }
+    }
+    const unsigned char* nearFluid = cellNearFluid_.data();
+    const auto noFluidNear =
+        [=](const scalar gx, const scalar gy, const scalar hg)
+        {
+            if (!gridNx || hg > hFluid) return false;
+            const scalar fx = (gx - gridX0)*invD, fy = (gy - gridY0)*invD;
+            if (!(fx >= 0 && fy >= 0 && fx < gridNx && fy < gridNy))
+            {
+                return false;   // left to the box and the search
+            }
+            return !nearFluid[label(fy)*gridNx + label(fx)];
+        };
+
     for (label r = 0; r < elements.regions().size(); ++r)
     {
         if (!elements.hasMaterial(r) || !elements.material(r).isFluid())
@@ -372,36 +449,82 @@ void Foam::elementParticleCoupling::setGhosts
         const label begin = elements.regions()[r].elemBegin;
         const label end = elements.regions()[r].elemEnd;
 
-        // Which of the elements' ghosts reach a fluid particle: a search
-        // per element, as costly as a particle's, on every thread; then the
+        // Which of the elements' ghosts reach a fluid particle (bit k of
+        // the element's byte: ghost k): a search per ghost in reach of
+        // the box, as costly as a particle's, on every thread; then the
         // ghosts in element order, as one thread made them
-        ghostReaches_.assign(perElement*(end - begin), 0);
+        ghostReaches_.assign(end - begin, 0);
         unsigned char* reaches = ghostReaches_.data();
         #pragma omp parallel for schedule(static) if(end - begin > minParallelParticles)
         for (label el = begin; el < end; ++el)
         {
-            unsigned char* reached = reaches + perElement*(el - begin);
+            // All three nodes beyond the box by more than the reach: so
+            // are the ghosts, which lie between them (with a rounding
+            // margin; reaches stays 0)
+            {
+                const label* n = &nodes[3*el];
+                const scalar x0 = x[2*n[0]], x1 = x[2*n[1]], x2 = x[2*n[2]];
+                const scalar y0 = x[2*n[0] + 1], y1 = x[2*n[1] + 1];
+                const scalar y2 = x[2*n[2] + 1];
+                const scalar d =
+                    kappa*max(hFluid, smoothingLengthRatio_*std::sqrt(area[el]))
+                  + boxSlack;
+                if
+                (
+                    max(x0, max(x1, x2)) < box[0] - d
+                 || min(x0, min(x1, x2)) > box[2] + d
+                 || max(y0, max(y1, y2)) < box[1] - d
+                 || min(y0, min(y1, y2)) > box[3] + d
+                )
+                {
+                    continue;
+                }
+            }
+            scalar gx[3], gy[3], hg;
+            candidates(el, gx, gy, hg);
+            unsigned char reached = 0;
             for (label k = 0; k < perElement; ++k)
             {
-                scalar gx, gy, hg;
-                candidate(el, k, gx, gy, hg);
-                reached[k] = !outOfReach(gx, gy, hg) && reachesFluid(gx, gy, hg);
+                if
+                (
+                    !outOfReach(gx[k], gy[k], hg)
+                 && !noFluidNear(gx[k], gy[k], hg)
+                 && reachesFluid(gx[k], gy[k], hg)
+                )
+                {
+                    reached |= 1u << k;
+                }
             }
+            reaches[el - begin] = reached;
         }
 
-        for (label el = begin; el < end; ++el)
+        const label nEl = end - begin;
+        for (label i = 0; i < nEl; ++i)
         {
-            const unsigned char* reached = reaches + perElement*(el - begin);
+            // Most elements reach nothing: skip eight at a time
+            if (i + 8 <= nEl)
+            {
+                std::uint64_t eight;
+                std::memcpy(&eight, reaches + i, 8);
+                if (!eight)
+                {
+                    i += 7;
+                    continue;
+                }
+            }
+            const unsigned char reached = reaches[i];
+            if (!reached) continue;
+            const label el = begin + i;
+            scalar gx[3], gy[3], hg;
+            candidates(el, gx, gy, hg);
             const label* n = &nodes[3*el];
             for (label k = 0; k < perElement; ++k)
             {
-                if (!reached[k]) continue;
-                scalar gx, gy, hg;
-                candidate(el, k, gx, gy, hg);
+                if (!(reached & (1u << k))) continue;
                 ghostElement_.push_back(el);
                 ghostCorner_.push_back(split ? k : -1);
-                ghostX_.push_back(gx);
-                ghostX_.push_back(gy);
+                ghostX_.push_back(gx[k]);
+                ghostX_.push_back(gy[k]);
                 // Eq. (17) with equal nodal shares: the nodes' mean. A
                 // split ghost at (x_k + x_c)/2 moves at (v_k + v_c)/2, and
                 // that is the velocity it carries (see Description)

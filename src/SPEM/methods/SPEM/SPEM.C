@@ -330,6 +330,26 @@ std::vector<Foam::label> Foam::spemMethods::SPEM::trianglesNearBodies()
             }
             return false;
         };
+        // The nodes in reach, each tested once (a node has about six
+        // elements)
+        nodeInReach_.assign(em.nNodes(), 0);
+        for (label n = 0; n < em.nNodes(); ++n)
+        {
+            // slide: the elements of the nodes on the body stay elements
+            if (slide && bodyElements_->attached(n)) continue;
+            const scalar px = x[2*n];
+            const scalar py = x[2*n + 1];
+            if
+            (
+                px < box.min().x() - reach || px > box.max().x() + reach
+             || py < box.min().y() - reach || py > box.max().y() + reach
+             || body.signedDistance(px, py) >= reach
+            )
+            {
+                continue;
+            }
+            nodeInReach_[n] = !slide || nearParticle(px, py);
+        }
         for (label r = 0; r < em.regions().size(); ++r)
         {
             if (!em.hasMaterial(r) || !em.material(r).isFluid()) continue;
@@ -337,6 +357,14 @@ std::vector<Foam::label> Foam::spemMethods::SPEM::trianglesNearBodies()
             for (label el = reg.elemBegin; el < reg.elemEnd; ++el)
             {
                 const label* en = &nodes[3*el];
+                if
+                (
+                    !nodeInReach_[en[0]] && !nodeInReach_[en[1]]
+                 && !nodeInReach_[en[2]]
+                )
+                {
+                    continue;
+                }
                 if
                 (
                     slide
@@ -349,25 +377,7 @@ std::vector<Foam::label> Foam::spemMethods::SPEM::trianglesNearBodies()
                 {
                     continue;
                 }
-                for (label a = 0; a < 3; ++a)
-                {
-                    const scalar px = x[2*en[a]];
-                    const scalar py = x[2*en[a] + 1];
-                    if
-                    (
-                        px < box.min().x() - reach || px > box.max().x() + reach
-                     || py < box.min().y() - reach || py > box.max().y() + reach
-                     || body.signedDistance(px, py) >= reach
-                    )
-                    {
-                        continue;
-                    }
-                    if (!slide || nearParticle(px, py))
-                    {
-                        near.push_back(em.elementTriangle()[el]);
-                        break;
-                    }
-                }
+                near.push_back(em.elementTriangle()[el]);
             }
         }
     }
