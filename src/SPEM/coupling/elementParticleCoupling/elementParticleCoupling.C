@@ -368,6 +368,11 @@ void Foam::elementParticleCoupling::setGhosts
              || gx > box[2] + d || gy > box[3] + d;
         };
 
+    // Rounding margin for the elements' test below: far above the
+    // rounding of a node mean, far below a spacing
+    const scalar boxSlack =
+        1e-9*(mag(box[0]) + mag(box[1]) + mag(box[2]) + mag(box[3]) + 1);
+
     // Cells of side D = kappa h_max over the box (and a cell round it),
     // each marked if a fluid particle lies in it or in one of its eight
     // neighbours: a ghost of h_ghost <= h_max reaches particles within
@@ -375,11 +380,6 @@ void Foam::elementParticleCoupling::setGhosts
     // own, so an unmarked cell has none in reach (most ghosts in the box:
     // a byte instead of a search). Not laid where the cells would
     // outnumber the particles by far (particles scattered far apart)
-    // Rounding margin for the elements' test below: far above the
-    // rounding of a node mean, far below a spacing
-    const scalar boxSlack =
-        1e-9*(mag(box[0]) + mag(box[1]) + mag(box[2]) + mag(box[3]) + 1);
-
     const scalar D = kappa*hFluid;
     label gridNx = 0, gridNy = 0;
     if (D > 0 && box[0] <= box[2])
