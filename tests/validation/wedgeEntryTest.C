@@ -300,7 +300,7 @@ TEST(WedgeWaterEntry, multiResolutionPeakForceAsSPEMAtTheSameLocalResolution)
 TEST(WedgeWaterEntry, multiResolutionRefinedRegionFollowsTheWedge)
 {
     const int coarse = 20, fine = 35;
-    const double bodyReach = 3;
+    const int bodyReach = 3;
     const auto papersSetUp = [&](const fs::path& caseDir)
     {
         // The box's corners and bodyReach, in the conversion dictionary
@@ -313,7 +313,10 @@ TEST(WedgeWaterEntry, multiResolutionRefinedRegionFollowsTheWedge)
                 std::pair<std::string, std::string>
                 {"min     (-0.5 -0.35 0);", "min (-0.1 -0.05 0);"},
                 {"max     (0.5 0 0);", "max (0.1 0 0);"},
-                {"bodyReach        1;", "bodyReach 3;"}
+                {
+                    "bodyReach        1;",
+                    "bodyReach " + std::to_string(bodyReach) + ";"
+                }
             }
         )
         {
@@ -360,7 +363,7 @@ TEST(WedgeWaterEntry, multiResolutionRefinedRegionFollowsTheWedge)
     std::printf
     (
         "wedgeWaterEntry, multiResolutionSPEM nx %d, preset box 0.2 m x"
-        " 0.05 m, bodyReach %g: %zu particles at %.4f s; keel at y = %.4f"
+        " 0.05 m, bodyReach %d: %zu particles at %.4f s; keel at y = %.4f"
         " m, lowest particle %.4f m below it (at least %.4f m asked)\n"
         "  RMS difference of the wedge's speed from SPEM nx %d's: %.4f m/s;"
         " SPEM nx %d's %.4f m/s\n",
