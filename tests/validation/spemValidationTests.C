@@ -1230,53 +1230,53 @@ TEST(SpemValidation, multiResolutionInterfaceStaysQuietBelowItsCourantLimit)
 }
 
 
-TEST(SpemValidation, multiResolutionRefinedRegionGrowsAsFineSPEMs)
+namespace
 {
-    // cylinderWaterExit to its end (T = V0 t/d = 2, the cylinder through
-    // the surface): the area that multiResolutionSPEM converts at nx 8
-    // (refined particles, three per element) against the area that SPEM
-    // converts at the same local resolution (nx 14, one particle per
-    // element 3.06 times smaller), each the particles' mass over rho0.
-    // The refined region should follow the flow as SPEM's does, not grow
-    // because the interface distorts the coarse elements next to it.
-    // Measured at t = 6.41 s, against SPEM's 37.09 m^2 (9,257 particles):
-    // with interfaceForce balancedParticles (the default) 60.29 m^2, 1.63
-    // times (14,682 particles); with balancedTraction (the default
-    // before) 101.10 m^2, 2.73 times (24,522); with traction (eq. 25, not
-    // an exact exchange) 12,345 particles, about 1.4 times. The bound 2
-    // lies between the two exact exchanges
-    const auto convertedArea = [](const fs::path& caseDir)
+
+//- The area a finished run converted, its particles' mass over rho0 at
+//  its last time, and that time
+std::pair<double, double> convertedArea(const fs::path& caseDir)
+{
+    double latest = -1;
+    fs::path last;
+    for (const auto& e : fs::directory_iterator(caseDir))
     {
-        double latest = -1;
-        fs::path last;
-        for (const auto& e : fs::directory_iterator(caseDir))
+        const std::string name = e.path().filename().string();
+        if (name.empty() || !std::isdigit(static_cast<unsigned char>(name[0])))
         {
-            const std::string name = e.path().filename().string();
-            if (name.empty() || !std::isdigit(static_cast<unsigned char>(name[0])))
-            {
-                continue;
-            }
-            const double t = std::stod(name);
-            if (t > latest)
-            {
-                latest = t;
-                last = e.path();
-            }
+            continue;
         }
-        double mass = 0;
-        for (const double m : testFiles::readFoamList(last/"spem/particleMass", 1))
+        const double t = std::stod(name);
+        if (t > latest)
         {
-            mass += m;
+            latest = t;
+            last = e.path();
         }
-        return std::pair<double, double>{mass/1000, latest};
-    };
+    }
+    double mass = 0;
+    for (const double m : testFiles::readFoamList(last/"spem/particleMass", 1))
+    {
+        mass += m;
+    }
+    return {mass/1000, latest};
+}
+
+//- cylinderWaterExit to its end (T = V0 t/d = 2, the cylinder through the
+//  surface): the area multiResolutionSPEM converts at nx (refined
+//  particles, three per element) against the area SPEM converts at the
+//  same local resolution (nxFine, one particle per element 3 times
+//  smaller), bounded at twice
+void refinedRegionAgainstFineSPEM(const int nx, const int nxFine)
+{
+    const std::string tag = std::to_string(nx);
     const fs::path multi =
-        copyTutorial("cylinderWaterExit", "spemMultiResolutionRegion");
+        copyTutorial("cylinderWaterExit", "spemMultiResolutionRegion" + tag);
     replaceEntry(multi/"system/spemSchemes", "method", "multiResolutionSPEM");
+    replaceEntry(multi/"system/blockMeshDict", "nx", tag);
     ASSERT_TRUE(runCase(multi));
     const fs::path spem =
-        copyTutorial("cylinderWaterExit", "spemMultiResolutionRegionSPEM");
-    replaceEntry(spem/"system/blockMeshDict", "nx", "14");
+        copyTutorial("cylinderWaterExit", "spemMultiResolutionRegionSPEM" + tag);
+    replaceEntry(spem/"system/blockMeshDict", "nx", std::to_string(nxFine));
     ASSERT_TRUE(runCase(spem));
     const auto [aMulti, tMulti] = convertedArea(multi);
     const auto [aSpem, tSpem] = convertedArea(spem);
@@ -1284,16 +1284,46 @@ TEST(SpemValidation, multiResolutionRefinedRegionGrowsAsFineSPEMs)
     std::printf
     (
         "cylinderWaterExit at t = %.4f s: converted area %.3f m^2 with"
-        " multiResolutionSPEM (nx 8), %.3f m^2 with SPEM at the same local"
-        " resolution (nx 14): %.2f times\n",
-        tMulti, aMulti, aSpem, aMulti/aSpem
+        " multiResolutionSPEM (nx %d), %.3f m^2 with SPEM at the same local"
+        " resolution (nx %d): %.2f times\n",
+        tMulti, aMulti, nx, aSpem, nxFine, aMulti/aSpem
     );
     EXPECT_LT(aMulti, 2*aSpem);
-    if (!HasFailure())
+    if (!::testing::Test::HasFailure())
     {
         fs::remove_all(multi);
         fs::remove_all(spem);
     }
+}
+
+} // End anonymous namespace
+
+
+TEST(SpemValidation, multiResolutionRefinedRegionGrowsAsFineSPEMs)
+{
+    // The refined region should follow the flow as SPEM's does, not grow
+    // because the interface distorts the coarse elements next to it.
+    // Measured at nx 8 against nx 14 at t = 6.41 s, against SPEM's 37.09
+    // m^2 (9,257 particles): with interfaceForce balancedParticles (the
+    // default) 60.29 m^2, 1.63 times (14,682 particles); with
+    // balancedTraction (the default before) 101.10 m^2, 2.73 times
+    // (24,522); with traction (eq. 25, not an exact exchange) 12,345
+    // particles, about 1.4 times. The bound 2 lies between the two exact
+    // exchanges
+    refinedRegionAgainstFineSPEM(8, 14);
+}
+
+
+// Not yet (issue 15): at nx 12 against SPEM at nx 21 the refined region
+// runs away after the cylinder has left the water (T > 1). Measured at
+// 5f955d6: 149.02 m^2 (81,360 refined particles, all but 13,776 elements
+// converted) against SPEM's 42.41 m^2 (23,797 particles), 3.51 times;
+// 3.33 times at maxCo 0.45 (141.03 m^2), below the interface's quiet
+// limit, so it is not the coupled step's Courant limit. 3,761 elements
+// had converted by T = 1, 25,555 by T = 2
+TEST(SpemValidation, DISABLED_multiResolutionRefinedRegionGrowsAsFineSPEMsAtNx12)
+{
+    refinedRegionAgainstFineSPEM(12, 21);
 }
 
 
