@@ -7,8 +7,6 @@
 
 #include <algorithm>
 #include <cmath>
-#include <cstdint>
-#include <cstring>
 #include <type_traits>
 
 // * * * * * * * * * * * * * * * Static Data  * * * * * * * * * * * * * * * //
@@ -498,23 +496,10 @@ void Foam::elementParticleCoupling::setGhosts
             reaches[el - begin] = reached;
         }
 
-        const label nEl = end - begin;
-        for (label i = 0; i < nEl; ++i)
+        for (label el = begin; el < end; ++el)
         {
-            // Most elements reach nothing: skip eight at a time
-            if (i + 8 <= nEl)
-            {
-                std::uint64_t eight;
-                std::memcpy(&eight, reaches + i, 8);
-                if (!eight)
-                {
-                    i += 7;
-                    continue;
-                }
-            }
-            const unsigned char reached = reaches[i];
+            const unsigned char reached = reaches[el - begin];
             if (!reached) continue;
-            const label el = begin + i;
             scalar gx[3], gy[3], hg;
             candidates(el, gx, gy, hg);
             const label* n = &nodes[3*el];
