@@ -25,7 +25,8 @@ Description
     Solver.* (Output)      vtkFields writes exactly the arrays named, a
                            name no block has stops naming the file, the
                            keyword and the valid names; vtkFormat sets
-                           how the pieces store their arrays
+                           how the pieces store their arrays, vtkPrecision
+                           Float32 or Float64
     SolverRestart.*        a run continued from its latest time ends in
                            the same state as a continuous run, in ascii,
                            in binary (the default without writeFormat)
@@ -2129,6 +2130,58 @@ TEST_F(Solver, vtkFormatChoosesHowTheArraysAreStored)
             EXPECT_FALSE(contains(header, "compressor=")) << header;
         }
     }
+}
+
+
+TEST_F(Solver, vtkPrecisionChoosesFloat32OrFloat64)
+{
+    // Default single: reals and points Float32; double: Float64; labels
+    // (region) and the connectivity Int32 either way. The values read
+    // back: VtkSeries.float32RoundsRealsAndKeepsIntegerFieldsExact
+    for (const std::string precision : {"", "double", "single"})
+    {
+        SCOPED_TRACE("vtkPrecision " + precision);
+        if (!precision.empty()) setControl("vtkPrecision", precision);
+        setControl("endTime", "0.01");
+        runExpectingSuccess();
+        if (HasFailure()) return;
+        const std::string header = lastVtkPieces(pvd())["elements"];
+        const std::string real =
+            precision == "double" ? "type=\"Float64\"" : "type=\"Float32\"";
+        for (const std::string name : {"velocity", "pressure", "stress", "Points"})
+        {
+            bool found = false;
+            for (const std::string& array : xmlTags(header, "DataArray"))
+            {
+                if (!contains(array, "Name=\"" + name + "\"")) continue;
+                found = true;
+                EXPECT_TRUE(contains(array, real)) << array;
+            }
+            EXPECT_TRUE(found) << name << " in " << header.substr(0, 1500);
+        }
+        for (const std::string name : {"region", "connectivity", "offsets"})
+        {
+            bool found = false;
+            for (const std::string& array : xmlTags(header, "DataArray"))
+            {
+                if (!contains(array, "Name=\"" + name + "\"")) continue;
+                found = true;
+                EXPECT_TRUE(contains(array, "type=\"Int32\"")) << array;
+            }
+            EXPECT_TRUE(found) << name << " in " << header.substr(0, 1500);
+        }
+    }
+
+    setControl("vtkPrecision", "half");
+    const std::string text = runExpectingFatalError();
+    expectInLog
+    (
+        text,
+        {
+            "FATAL IO ERROR", "'half'", "vtkPrecision", "system/controlDict",
+            "single", "double"
+        }
+    );
 }
 
 

@@ -601,6 +601,113 @@ TEST_F(VtkSeries, roundTripsEmptyAndSmallParticleBlocks)
 }
 
 
+TEST_F(VtkSeries, float32RoundsRealsAndKeepsIntegerFieldsExact)
+{
+    // precision::float32 (spemFoam's default vtkPrecision single): every
+    // real array and the coordinates are Float32, each value the double
+    // rounded to float; integer fields and the connectivity are Int32 and
+    // exact, also beyond float's 2^24
+    const meshFields fields(0.1 + 0.2);
+    const std::vector<double> region = {0, 1, 2};
+    const std::vector<double> positions = {1.0/3.0, 2.0/7.0,  -1e-3, 6e23};
+    const std::vector<double> ids = {16777217, -5};   // 2^24 + 1
+    const std::vector<double> rho = {1000.0/3.0, 999.1};
+    const auto write = [&](const std::string& name, seriesWriter::precision p)
+    {
+        seriesWriter writer(dir.string(), name, 0, seriesWriter::format::raw, p);
+        triangleBlock elements = fields.block();
+        elements.cellData.push_back({"region", 1, region.data(), true});
+        writer.write
+        (
+            0, {elements},
+            {{
+                "particles", 2, positions.data(),
+                {{"density", 1, rho.data()}, {"id", 1, ids.data(), true}}
+            }}
+        );
+        return dir/(name + "_000000");
+    };
+    const fs::path single = write("single", seriesWriter::precision::float32);
+    const fs::path full = write("full", seriesWriter::precision::float64);
+
+    auto blocks = readMultiBlock(single.string() + ".vtm");
+    ASSERT_TRUE(blocks);
+    auto* grid = vtkUnstructuredGrid::SafeDownCast(blocks->GetBlock(0));
+    auto* cloud = vtkPolyData::SafeDownCast(blocks->GetBlock(1));
+    ASSERT_TRUE(grid && cloud);
+
+    EXPECT_EQ(grid->GetPoints()->GetDataType(), VTK_FLOAT);
+    for (std::size_t p = 0; p < nMeshPoints; ++p)
+    {
+        double x[3];
+        grid->GetPoint(vtkIdType(p), x);
+        EXPECT_EQ(x[0], double(float(meshPoints[2*p])));
+        EXPECT_EQ(x[1], double(float(meshPoints[2*p + 1])));
+    }
+    vtkNew<vtkIdList> nodes;
+    for (std::size_t t = 0; t < nMeshTriangles; ++t)
+    {
+        grid->GetCellPoints(vtkIdType(t), nodes);
+        ASSERT_EQ(nodes->GetNumberOfIds(), 3);
+        for (int i = 0; i < 3; ++i)
+        {
+            EXPECT_EQ(nodes->GetId(i), meshTriangles[3*t + i]);
+        }
+    }
+    vtkDataArray* stress = grid->GetCellData()->GetArray("stress");
+    ASSERT_TRUE(stress);
+    EXPECT_EQ(stress->GetDataType(), VTK_FLOAT);
+    for (std::size_t t = 0; t < nMeshTriangles; ++t)
+    {
+        for (int c = 0; c < 6; ++c)
+        {
+            EXPECT_EQ
+            (
+                stress->GetComponent(t, c), double(float(fields.stress[6*t + c]))
+            );
+        }
+    }
+    vtkDataArray* regionArray = grid->GetCellData()->GetArray("region");
+    ASSERT_TRUE(regionArray);
+    EXPECT_EQ(regionArray->GetDataType(), VTK_INT);
+    for (vtkIdType t = 0; t < 3; ++t)
+    {
+        EXPECT_EQ(regionArray->GetComponent(t, 0), region[t]);
+    }
+
+    EXPECT_EQ(cloud->GetPoints()->GetDataType(), VTK_FLOAT);
+    vtkDataArray* id = cloud->GetPointData()->GetArray("id");
+    vtkDataArray* density = cloud->GetPointData()->GetArray("density");
+    ASSERT_TRUE(id && density);
+    EXPECT_EQ(id->GetDataType(), VTK_INT);
+    for (vtkIdType i = 0; i < 2; ++i)
+    {
+        double x[3];
+        cloud->GetPoint(i, x);
+        EXPECT_EQ(x[0], double(float(positions[2*i])));
+        EXPECT_EQ(x[1], double(float(positions[2*i + 1])));
+        EXPECT_EQ(id->GetComponent(i, 0), ids[i]);
+        EXPECT_EQ(density->GetComponent(i, 0), double(float(rho[i])));
+    }
+
+    // Float64: the doubles as they are; the integers Int32 still
+    blocks = readMultiBlock(full.string() + ".vtm");
+    ASSERT_TRUE(blocks);
+    grid = vtkUnstructuredGrid::SafeDownCast(blocks->GetBlock(0));
+    ASSERT_TRUE(grid);
+    EXPECT_EQ(grid->GetPoints()->GetDataType(), VTK_DOUBLE);
+    EXPECT_EQ(grid->GetCellData()->GetArray("stress")->GetDataType(), VTK_DOUBLE);
+    EXPECT_EQ(grid->GetCellData()->GetArray("region")->GetDataType(), VTK_INT);
+
+    // A value of an integer field that is not a whole number is refused
+    const std::vector<double> notWhole = {0, 1.5, 2};
+    triangleBlock bad = fields.block();
+    bad.cellData.push_back({"region", 1, notWhole.data(), true});
+    seriesWriter writer(dir.string(), "bad", 0);
+    EXPECT_THROW(writer.write(0, {bad}, {}), std::invalid_argument);
+}
+
+
 TEST_F(VtkSeries, writesTimesWhereEveryBlockIsEmptyOrThereIsNone)
 {
     // VTK's own multiblock writer writes no file at all in these cases

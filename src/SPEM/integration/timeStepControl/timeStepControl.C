@@ -48,7 +48,7 @@ void Foam::timeStepControl::checkControlDict() const
             "OptimisationSwitches", "DimensionSets", "DimensionedConstants",
             "Tolerances", "logInterval", "maxSteps", "restartFallback",
             "allowMaxCoAbove1", "subCycling", "subCyclingLoad",
-            "subCyclingMaxCo", "vtkFormat",
+            "subCyclingMaxCo", "vtkFormat", "vtkPrecision",
             "vtkFields"
         }
     );

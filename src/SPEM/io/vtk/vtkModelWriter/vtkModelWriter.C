@@ -73,7 +73,7 @@ Foam::vtkOutput::triangleBlock elementBlock
         {"density", 1, f.density.data()},
         {"stress", 6, f.stress.data()},
         {"vonMisesStress", 1, f.vonMises.data()},
-        {"region", 1, d.regionId.data()}
+        {"region", 1, d.regionId.data(), true}
     };
     return b;
 }
@@ -114,10 +114,10 @@ Foam::vtkOutput::particleBlock fluidBlock(const blockData::gathered& g)
         {"velocity", 2, g.v.data()},
         {"pressure", 1, g.p.data()},
         {"density", 1, g.rho.data()},
-        {"freeSurface", 1, g.surface.data()},
+        {"freeSurface", 1, g.surface.data(), true},
         {"smoothingLength", 1, g.h.data()},
-        {"level", 1, g.level.data()},
-        {"id", 1, g.id.data()}
+        {"level", 1, g.level.data(), true},
+        {"id", 1, g.id.data(), true}
     };
     return b;
 }
@@ -160,6 +160,9 @@ void select
 //- The vtkFormat names, in the order of seriesWriter::format
 const Foam::wordList formatNames{"raw", "lz4", "zlib", "ascii"};
 
+//- The vtkPrecision names, in the order of seriesWriter::precision
+const Foam::wordList precisionNames{"double", "single"};
+
 } // End anonymous namespace
 
 
@@ -199,7 +202,8 @@ void Foam::vtkModelWriter::makeBodyOutlines(const rigidBodies& bodies)
 Foam::vtkModelWriter::vtkModelWriter(const Time& runTime)
 :
     runTime_(runTime),
-    format_(vtkOutput::seriesWriter::format::raw)
+    format_(vtkOutput::seriesWriter::format::raw),
+    precision_(vtkOutput::seriesWriter::precision::float32)
 {
     const dictionary& controls = runTime.controlDict();
     const word format(controls.getOrDefault<word>("vtkFormat", "raw"));
@@ -212,6 +216,20 @@ Foam::vtkModelWriter::vtkModelWriter(const Time& runTime)
             << exit(FatalIOError);
     }
     format_ = vtkOutput::seriesWriter::format(index);
+
+    const word precision
+    (
+        controls.getOrDefault<word>("vtkPrecision", "single")
+    );
+    const label precisionIndex = precisionNames.find(precision);
+    if (precisionIndex < 0)
+    {
+        FatalIOErrorInFunction(controls)
+            << "Unknown vtkPrecision '" << precision << "' in "
+            << controls.name() << nl << "Valid: " << precisionNames
+            << exit(FatalIOError);
+    }
+    precision_ = vtkOutput::seriesWriter::precision(precisionIndex);
 
     if (!controls.found("vtkFields")) return;
     const wordList selected(controls.get<wordList>("vtkFields"));
@@ -291,7 +309,7 @@ void Foam::vtkModelWriter::write
         bb.nTriangles = d.bodyTriangles.size()/3;
         bb.triangles = d.bodyTriangles.data();
         bb.pointData = {{"velocity", 2, d.bodyV.data()}};
-        bb.cellData = {{"body", 1, d.bodyIndex.data()}};
+        bb.cellData = {{"body", 1, d.bodyIndex.data(), true}};
         triangleBlocks.push_back(std::move(bb));
     }
 
@@ -316,7 +334,8 @@ void Foam::vtkModelWriter::write
                     runTime_.path()/"VTK",
                     runTime_.caseName().name(),
                     runTime_.value(),
-                    format_
+                    format_,
+                    precision_
                 )
             );
         }

@@ -8,7 +8,8 @@
 #include <vtkDoubleArray.h>
 #include <vtkErrorCode.h>
 #include <vtkFieldData.h>
-#include <vtkIdTypeArray.h>
+#include <vtkFloatArray.h>
+#include <vtkTypeInt32Array.h>
 #include <vtkNew.h>
 #include <vtkPointData.h>
 #include <vtkPoints.h>
@@ -23,6 +24,7 @@
 #include <algorithm>
 #include <charconv>
 #include <cmath>
+#include <climits>
 #include <cstring>
 #include <filesystem>
 #include <fstream>
@@ -232,41 +234,96 @@ void checkFields
 }
 
 
-//- A field as a VTK array: a 2D vector is copied to get z = 0, the others
-//  are used in place
-vtkSmartPointer<vtkDoubleArray> makeArray
+//- n tuples of nIn doubles (2: a 2D vector, stored with z = 0) into an
+//  array of nStored components of the array's value type
+template<class ArrayType>
+void copyTuples
 (
+    ArrayType* array,
+    const double* in,
+    const int nIn,
+    const int nStored,
+    const std::size_t nTuples
+)
+{
+    using valueType = typename ArrayType::ValueType;
+    array->SetNumberOfComponents(nStored);
+    array->SetNumberOfTuples(vtkIdType(nTuples));
+    if (nTuples == 0) return;
+    // Performance-critical: plain loop over raw storage, no per-value
+    // virtual calls (one write may hold millions of tuples)
+    valueType* out = array->GetPointer(0);
+    for (std::size_t i = 0; i < nTuples; ++i)
+    {
+        for (int c = 0; c < nIn; ++c)
+        {
+            out[nStored*i + c] = valueType(in[nIn*i + c]);
+        }
+        for (int c = nIn; c < nStored; ++c) out[nStored*i + c] = 0;
+    }
+}
+
+
+//- An integer field's values as Int32 (they are whole numbers in doubles)
+void copyWholeNumbers
+(
+    vtkTypeInt32Array* array,
     const field& f,
     const std::size_t nTuples
 )
 {
+    const std::size_t n = std::size_t(f.nComponents)*nTuples;
+    array->SetNumberOfComponents(f.nComponents);
+    array->SetNumberOfTuples(vtkIdType(nTuples));
+    if (n == 0) return;
+    vtkTypeInt32* out = array->GetPointer(0);
+    bool whole = true;
+    for (std::size_t i = 0; i < n; ++i)
+    {
+        const double v = f.values[i];
+        whole &= (v >= INT_MIN) & (v <= INT_MAX) & (v == std::trunc(v));
+        out[i] = whole ? vtkTypeInt32(v) : 0;
+    }
+    if (!whole)
+    {
+        throw std::invalid_argument
+        (
+            "vtkOutput::seriesWriter: integer field '" + f.name
+          + "' holds a value that is not a whole number of 32 bits"
+        );
+    }
+}
+
+
+//- A field as a VTK array: Int32 for an integer field; otherwise doubles
+//  used in place (Float64, not a 2D vector) or copied (a 2D vector gets
+//  z = 0; Float32 is rounded)
+vtkSmartPointer<vtkDataArray> makeArray
+(
+    const field& f,
+    const std::size_t nTuples,
+    const seriesWriter::precision realPrecision
+)
+{
     const int nStored = f.nComponents == 2 ? 3 : f.nComponents;
-    auto array = vtkSmartPointer<vtkDoubleArray>::New();
-    array->SetName(f.name.c_str());
-    array->SetNumberOfComponents(nStored);
-    if (f.nComponents == 6)
+    vtkSmartPointer<vtkDataArray> array;
+    if (f.integer)
     {
-        for (int c = 0; c < 6; ++c)
-        {
-            array->SetComponentName(c, symmTensorComponentNames[c]);
-        }
+        auto ints = vtkSmartPointer<vtkTypeInt32Array>::New();
+        copyWholeNumbers(ints, f, nTuples);
+        array = ints;
     }
-    if (nTuples == 0)
+    else if (realPrecision == seriesWriter::precision::float32)
     {
-        array->SetNumberOfTuples(0);
+        auto floats = vtkSmartPointer<vtkFloatArray>::New();
+        copyTuples(floats.Get(), f.values, f.nComponents, nStored, nTuples);
+        array = floats;
     }
-    else if (f.nComponents == 2)
+    else if (f.nComponents == 2 || nTuples == 0)
     {
-        // Performance-critical: plain loop over raw storage, no per-value
-        // virtual calls (one write may hold millions of tuples)
-        array->SetNumberOfTuples(vtkIdType(nTuples));
-        double* out = array->GetPointer(0);
-        for (std::size_t i = 0; i < nTuples; ++i)
-        {
-            out[3*i] = f.values[2*i];
-            out[3*i + 1] = f.values[2*i + 1];
-            out[3*i + 2] = 0;
-        }
+        auto doubles = vtkSmartPointer<vtkDoubleArray>::New();
+        copyTuples(doubles.Get(), f.values, f.nComponents, nStored, nTuples);
+        array = doubles;
     }
     else
     {
@@ -274,33 +331,47 @@ vtkSmartPointer<vtkDoubleArray> makeArray
         // the array lives only inside write() and VTK's writers only read
         // it; SetArray wants a non-const pointer, save = 1 so that VTK
         // never frees the caller's memory
-        array->SetArray
+        auto doubles = vtkSmartPointer<vtkDoubleArray>::New();
+        doubles->SetNumberOfComponents(nStored);
+        doubles->SetArray
         (
             const_cast<double*>(f.values), vtkIdType(nStored*nTuples), 1
         );
+        array = doubles;
+    }
+    array->SetName(f.name.c_str());
+    if (f.nComponents == 6)
+    {
+        for (int c = 0; c < 6; ++c)
+        {
+            array->SetComponentName(c, symmTensorComponentNames[c]);
+        }
     }
     return array;
 }
 
 
 //- 2D positions, (x, y) interleaved, as VTK points with z = 0
-vtkSmartPointer<vtkPoints> makePoints(const double* xy, const std::size_t n)
+vtkSmartPointer<vtkPoints> makePoints
+(
+    const double* xy,
+    const std::size_t n,
+    const seriesWriter::precision realPrecision
+)
 {
-    vtkNew<vtkDoubleArray> xyz;
-    xyz->SetNumberOfComponents(3);
-    xyz->SetNumberOfTuples(vtkIdType(n));
-    if (n > 0)
-    {
-        double* out = xyz->GetPointer(0);
-        for (std::size_t i = 0; i < n; ++i)
-        {
-            out[3*i] = xy[2*i];
-            out[3*i + 1] = xy[2*i + 1];
-            out[3*i + 2] = 0;
-        }
-    }
     auto points = vtkSmartPointer<vtkPoints>::New();
-    points->SetData(xyz);
+    if (realPrecision == seriesWriter::precision::float32)
+    {
+        vtkNew<vtkFloatArray> xyz;
+        copyTuples(xyz.Get(), xy, 2, 3, n);
+        points->SetData(xyz);
+    }
+    else
+    {
+        vtkNew<vtkDoubleArray> xyz;
+        copyTuples(xyz.Get(), xy, 2, 3, n);
+        points->SetData(xyz);
+    }
     return points;
 }
 
@@ -310,12 +381,13 @@ void addFields
 (
     vtkFieldData* data,
     const std::vector<field>& fields,
-    const std::size_t nTuples
+    const std::size_t nTuples,
+    const seriesWriter::precision realPrecision
 )
 {
     for (const field& f : fields)
     {
-        data->AddArray(makeArray(f, nTuples));
+        data->AddArray(makeArray(f, nTuples, realPrecision));
     }
 }
 
@@ -336,7 +408,8 @@ void addTimeValue(vtkDataSet* dataSet, const double time)
 vtkSmartPointer<vtkUnstructuredGrid> makeTriangleGrid
 (
     const triangleBlock& block,
-    const double time
+    const double time,
+    const seriesWriter::precision realPrecision
 )
 {
     const std::string where =
@@ -354,16 +427,17 @@ vtkSmartPointer<vtkUnstructuredGrid> makeTriangleGrid
 
     // Performance-critical: copy and range-check in one branch-free pass
     const std::size_t nLabels = 3*block.nTriangles;
-    vtkNew<vtkIdTypeArray> connectivity;
+    // Int32: the labels are ints (half the bytes of VTK's default Int64)
+    vtkNew<vtkTypeInt32Array> connectivity;
     connectivity->SetNumberOfValues(vtkIdType(nLabels));
     bool inRange = true;
     if (nLabels > 0)
     {
-        vtkIdType* out = connectivity->GetPointer(0);
+        vtkTypeInt32* out = connectivity->GetPointer(0);
         const vtkIdType nPoints = vtkIdType(block.nPoints);
         for (std::size_t i = 0; i < nLabels; ++i)
         {
-            const vtkIdType label = block.triangles[i];
+            const vtkTypeInt32 label = block.triangles[i];
             inRange &= (label >= 0) & (label < nPoints);
             out[i] = label;
         }
@@ -387,13 +461,22 @@ vtkSmartPointer<vtkUnstructuredGrid> makeTriangleGrid
     }
 
     vtkNew<vtkCellArray> triangles;
-    triangles->SetData(3, connectivity);
+    if (!triangles->SetData(3, connectivity))
+    {
+        throw std::runtime_error(where + ": VTK refused the connectivity");
+    }
 
     auto grid = vtkSmartPointer<vtkUnstructuredGrid>::New();
-    grid->SetPoints(makePoints(block.points, block.nPoints));
+    grid->SetPoints(makePoints(block.points, block.nPoints, realPrecision));
     grid->SetCells(VTK_TRIANGLE, triangles);
-    addFields(grid->GetPointData(), block.pointData, block.nPoints);
-    addFields(grid->GetCellData(), block.cellData, block.nTriangles);
+    addFields
+    (
+        grid->GetPointData(), block.pointData, block.nPoints, realPrecision
+    );
+    addFields
+    (
+        grid->GetCellData(), block.cellData, block.nTriangles, realPrecision
+    );
     addTimeValue(grid, time);
     return grid;
 }
@@ -404,7 +487,8 @@ vtkSmartPointer<vtkUnstructuredGrid> makeTriangleGrid
 vtkSmartPointer<vtkPolyData> makeParticleCloud
 (
     const particleBlock& block,
-    const double time
+    const double time,
+    const seriesWriter::precision realPrecision
 )
 {
     if (block.nParticles > 0 && !block.positions)
@@ -417,23 +501,45 @@ vtkSmartPointer<vtkPolyData> makeParticleCloud
     }
     checkFields(block.pointData, block.nParticles, block.name);
 
-    vtkNew<vtkIdTypeArray> connectivity;
+    if (block.nParticles > std::size_t(INT_MAX))
+    {
+        throw std::invalid_argument
+        (
+            "vtkOutput::seriesWriter: particle block '" + block.name
+          + "' has more particles than Int32 connectivity can label"
+        );
+    }
+    vtkNew<vtkTypeInt32Array> connectivity;
     connectivity->SetNumberOfValues(vtkIdType(block.nParticles));
     if (block.nParticles > 0)
     {
-        vtkIdType* out = connectivity->GetPointer(0);
+        vtkTypeInt32* out = connectivity->GetPointer(0);
         for (std::size_t i = 0; i < block.nParticles; ++i)
         {
-            out[i] = vtkIdType(i);
+            out[i] = vtkTypeInt32(i);
         }
     }
     vtkNew<vtkCellArray> vertices;
-    vertices->SetData(1, connectivity);
+    if (!vertices->SetData(1, connectivity))
+    {
+        throw std::runtime_error
+        (
+            "vtkOutput::seriesWriter: VTK refused the vertices of particle"
+            " block '" + block.name + "'"
+        );
+    }
 
     auto cloud = vtkSmartPointer<vtkPolyData>::New();
-    cloud->SetPoints(makePoints(block.positions, block.nParticles));
+    cloud->SetPoints
+    (
+        makePoints(block.positions, block.nParticles, realPrecision)
+    );
     cloud->SetVerts(vertices);
-    addFields(cloud->GetPointData(), block.pointData, block.nParticles);
+    addFields
+    (
+        cloud->GetPointData(), block.pointData, block.nParticles,
+        realPrecision
+    );
     addTimeValue(cloud, time);
     return cloud;
 }
@@ -583,12 +689,14 @@ Foam::vtkOutput::seriesWriter::seriesWriter
     const std::string& dir,
     const std::string& baseName,
     const double startTime,
-    const format dataFormat
+    const format dataFormat,
+    const precision realPrecision
 )
 :
     dir_(dir),
     baseName_(baseName),
     format_(dataFormat),
+    precision_(realPrecision),
     entries_(),
     nextIndex_(0)
 {
@@ -673,12 +781,12 @@ void Foam::vtkOutput::seriesWriter::write
     std::vector<std::string> blockNames;
     for (const triangleBlock& block : triangleBlocks)
     {
-        blocks.push_back(makeTriangleGrid(block, time));
+        blocks.push_back(makeTriangleGrid(block, time, precision_));
         blockNames.push_back(block.name);
     }
     for (const particleBlock& block : particleBlocks)
     {
-        blocks.push_back(makeParticleCloud(block, time));
+        blocks.push_back(makeParticleCloud(block, time, precision_));
         blockNames.push_back(block.name);
     }
 
