@@ -324,6 +324,12 @@ TEST(ESFEM, locateFindsWhatAPassOverEveryElementFindsWhileTheMeshMovesAndConvert
                 pts.push_back(0.5*(x[2*n[a] + 1] + x[2*c + 1]));
             }
         }
+        // All points in one call first (a probe set), which checks the
+        // grid once, so that it is the one to find a stale grid
+        std::vector<label> batch;
+        std::vector<scalar> batchBary;
+        em->locate(pts, batch, batchBary);
+        ASSERT_EQ(batch.size(), pts.size()/2);
         label inside = 0;
         for (std::size_t k = 0; k < pts.size()/2; ++k)
         {
@@ -331,10 +337,15 @@ TEST(ESFEM, locateFindsWhatAPassOverEveryElementFindsWhileTheMeshMovesAndConvert
             const label el = em->locate(pts[2*k], pts[2*k + 1], false, w);
             const label elb = bruteForce(pts[2*k], pts[2*k + 1], wb);
             ASSERT_EQ(el, elb) << "point " << pts[2*k] << ' ' << pts[2*k + 1];
+            ASSERT_EQ(batch[k], elb) << "point " << pts[2*k] << ' ' << pts[2*k + 1];
             if (el >= 0)
             {
                 ++inside;
-                for (label a = 0; a < 3; ++a) EXPECT_EQ(w[a], wb[a]);
+                for (label a = 0; a < 3; ++a)
+                {
+                    EXPECT_EQ(w[a], wb[a]);
+                    EXPECT_EQ(batchBary[3*k + a], wb[a]);
+                }
             }
         }
         EXPECT_GT(inside, 100);

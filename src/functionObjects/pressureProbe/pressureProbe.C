@@ -178,13 +178,18 @@ bool Foam::functionObjects::pressureProbe::write()
     os  << time_.value();
     const spemModel& m = model();
     const std::vector<scalar>& locations = currentLocations();
+    // The elements holding the probes, in one look-up (one check of the
+    // locator's grid for all of them)
+    std::vector<label> holders(locations.size()/2, -1);
+    std::vector<scalar> bary;
+    if (m.hasElements()) m.elements().locate(locations, holders, bary);
     for (size_t i = 0; i < locations.size()/2; ++i)
     {
         const scalar px = locations[2*i], py = locations[2*i + 1];
         scalar p = 0;
-        if (m.hasElements() && elementPressure(m.elements(), px, py, p))
+        if (holders[i] >= 0)
         {
-            os  << tab << p;
+            os  << tab << elementPressure(m.elements(), holders[i]);
         }
         // Kernel (Shepard) interpolation from the particles, wall particles
         // included so that a probe on a wall reads the wall pressure
@@ -205,18 +210,13 @@ bool Foam::functionObjects::pressureProbe::write()
 }
 
 
-bool Foam::functionObjects::pressureProbe::elementPressure
+Foam::scalar Foam::functionObjects::pressureProbe::elementPressure
 (
     const elementModel& em,
-    const scalar x,
-    const scalar y,
-    scalar& p
+    const label el
 )
 {
-    scalar w[3];
-    const label el = em.locate(x, y, false, w);
-    if (el < 0) return false;
-    p = 0;
+    scalar p = 0;
     for (label j = 0; j < 3; ++j)
     {
         const label k = em.elementDomains()[3*el + j];
@@ -224,5 +224,5 @@ bool Foam::functionObjects::pressureProbe::elementPressure
         em.domainCauchyStress(k, k + 1, sigma, &pk);
         p += pk/3;
     }
-    return true;
+    return p;
 }

@@ -1287,21 +1287,24 @@ Foam::elementModel::elementFields Foam::elementModel::fields() const
 }
 
 
-Foam::label Foam::elementModel::locate
+bool Foam::elementModel::currentLocator() const
+{
+    const std::vector<scalar>& x = x_[cur_];
+    return
+        locator_.valid(x, nElements(), topologyVersion_)
+     || locator_.build(x, elemNodes_, nElements(), topologyVersion_);
+}
+
+
+Foam::label Foam::elementModel::locateIn
 (
+    const bool gridded,
+    const std::vector<scalar>& x,
     const scalar px,
     const scalar py,
-    const bool reference,
     scalar bary[3]
 ) const
 {
-    const std::vector<scalar>& x = reference ? X_ : x_[cur_];
-    const bool gridded =
-        !reference
-     && (
-            locator_.valid(x, nElements(), topologyVersion_)
-         || locator_.build(x, elemNodes_, nElements(), topologyVersion_)
-        );
     if (gridded) return locator_.find(x, elemNodes_, px, py, bary);
     // The reference configuration (asked once per probe), or nodes that
     // are not finite: every element
@@ -1313,6 +1316,39 @@ Foam::label Foam::elementModel::locate
         }
     }
     return -1;
+}
+
+
+Foam::label Foam::elementModel::locate
+(
+    const scalar px,
+    const scalar py,
+    const bool reference,
+    scalar bary[3]
+) const
+{
+    if (reference) return locateIn(false, X_, px, py, bary);
+    return locateIn(currentLocator(), x_[cur_], px, py, bary);
+}
+
+
+void Foam::elementModel::locate
+(
+    const std::vector<scalar>& xy,
+    std::vector<label>& elements,
+    std::vector<scalar>& bary
+) const
+{
+    const label nPoints = label(xy.size()/2);
+    elements.resize(nPoints);
+    bary.resize(3*nPoints);
+    if (nPoints == 0) return;
+    const bool gridded = currentLocator();
+    for (label i = 0; i < nPoints; ++i)
+    {
+        elements[i] =
+            locateIn(gridded, x_[cur_], xy[2*i], xy[2*i + 1], &bary[3*i]);
+    }
 }
 
 
