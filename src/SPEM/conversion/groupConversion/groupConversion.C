@@ -264,16 +264,10 @@ void Foam::groupConversion::markDistorted(const elementModel& elements)
         const label end = elements.regions()[r].elemEnd;
 
         // Performance critical: every fluid element, every step
-        #pragma omp parallel for schedule(static) if(end - begin > minParallelLoop)
-        for (label el = begin; el < end; ++el)
-        {
-            const label* n = &nodes[3*el];
-            distorted_[el] = criterion.distorted
-            (
-                &x[2*n[0]], &x[2*n[1]], &x[2*n[2]],
-                &X[2*n[0]], &X[2*n[1]], &X[2*n[2]]
-            );
-        }
+        criterion.markDistorted
+        (
+            begin, end, nodes.data(), x.data(), X.data(), distorted_.data()
+        );
     }
 }
 
