@@ -1412,6 +1412,8 @@ TEST(SpemValidation, submergedCylinderFeelsArchimedesBuoyancy)
         replaceEntry(caseDir/"system/blockMeshDict", "nx", v.nx);
         replaceEntry(caseDir/"system/controlDict", "endTime", "1");
         replaceEntry(caseDir/"system/controlDict", "writeInterval", "0.5");
+        // The nodes on the cylinder are read from VTK/ to 1e-9 m
+        replaceEntry(caseDir/"system/controlDict", "vtkPrecision", "double");
         replaceEntry(caseDir/"system/spemSchemes", "method", v.method);
         std::ofstream(caseDir/"system/spemSchemes", std::ios::app)
             << v.schemes;
@@ -1537,6 +1539,8 @@ TEST(SpemValidation, floatingBoxRestsAtItsArchimedesDraft)
     replaceEntry(caseDir/"system/blockMeshDict", "nx", "40");
     replaceEntry(caseDir/"system/controlDict", "endTime", "1");
     replaceEntry(caseDir/"system/controlDict", "writeInterval", "0.25");
+    // The nodes on the box are read from VTK/ to 1e-9 m
+    replaceEntry(caseDir/"system/controlDict", "vtkPrecision", "double");
     replaceEntry(caseDir/"system/spemSchemes", "method", "SPEM");
     {
         std::ofstream os(caseDir/"constant/rigidBodyProperties");
