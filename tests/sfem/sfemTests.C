@@ -1147,6 +1147,68 @@ TEST(Materials, weaklyCompressibleFluidGivesStateEquationPressureAndViscousStres
 }
 
 
+TEST(Materials, bulkViscosityAddsIsotropicStressOfTheRateOfCompression)
+{
+    // sigma += b1 rho0 c l div(v) I with l = sqrt(1.5 A): in compression
+    // it adds to the pressure the stress carries, in expansion it takes
+    // from it; the thermodynamic pressure (eq. 7) and the shear are left
+    // alone, and the acoustic step shrinks by sqrt(1 + b1^2) - b1
+    const scalar b1 = 0.2, rho0 = 1000, c = 100, mu = 1e-3;
+    auto m = testModels::material
+    (
+        "w", testModels::water + " bulkViscosity 0.2;"
+    );
+    auto plain = testModels::material("w", testModels::water);
+    const scalar A = 0.99, mass = 1000;
+    const scalar p = c*c*(mass/A - rho0);
+    for (const scalar div : {-3.0, 2.0})
+    {
+        SCOPED_TRACE("div v " + std::to_string(div));
+        const scalar g[4] = {div/3, 0.5, -0.25, 2*div/3};
+        const stressResult r = stressOf(m(), g, A, mass);
+        const stressResult r0 = stressOf(plain(), g, A, mass);
+        const scalar q = b1*rho0*c*std::sqrt(1.5*A)*div;
+        for (const label i : {0, 3})
+        {
+            EXPECT_NEAR(r.P[i], r0.P[i] + q, 1e-12*std::abs(p));
+            EXPECT_NEAR(r.P[i], -p + q + 2*mu*(g[i] - div/3), 1e-12*std::abs(p));
+        }
+        EXPECT_EQ(r.P[1], r0.P[1]);
+        EXPECT_EQ(r.P[2], r0.P[2]);
+        EXPECT_EQ(r.p, r0.p);
+        EXPECT_NEAR(r.sigma[0], r0.sigma[0] + q, 1e-12*std::abs(p));
+        EXPECT_NEAR(r.sigma[2], r0.sigma[2] + q, 1e-12*std::abs(p));
+    }
+    EXPECT_NEAR(m->acousticStepFactor(), std::sqrt(1 + b1*b1) - b1, 1e-15);
+    EXPECT_EQ(plain->acousticStepFactor(), 1);
+}
+
+
+TEST(Materials, bulkViscosityOutsideZeroToOneStopsNamingTheKeyword)
+{
+    const bool wasThrowing = FatalIOError.throwExceptions();
+    for (const std::string value : {"-0.1", "1.5"})
+    {
+        std::string message;
+        try
+        {
+            testModels::material
+            (
+                "w", testModels::water + " bulkViscosity " + value + ";"
+            );
+            ADD_FAILURE() << "bulkViscosity " << value << " accepted";
+        }
+        catch (const IOerror& err)
+        {
+            message = err.message();
+        }
+        EXPECT_NE(message.find("bulkViscosity"), std::string::npos) << message;
+        EXPECT_NE(message.find("out of range"), std::string::npos) << message;
+    }
+    FatalIOError.throwExceptions(wasThrowing);
+}
+
+
 TEST(PatchConditions, fluidNodesSlideOnANoSlipWallHeldByItsShear)
 {
     // A solid block and a water block side by side on a no-slip floor,

@@ -47,7 +47,13 @@ Foam::weaklyCompressibleNewtonian::weaklyCompressibleNewtonian
     (
         dict.found("mu") ? readChecked("mu", saneRange::viscosity) : 0
     ),
-    hydrostaticStart_(readHydrostaticStart(name, dict))
+    hydrostaticStart_(readHydrostaticStart(name, dict)),
+    bulkViscosity_
+    (
+        dict.found("bulkViscosity")
+      ? readChecked("bulkViscosity", saneRange::bulkViscosity)
+      : 0
+    )
 {}
 
 
@@ -58,6 +64,26 @@ bool Foam::weaklyCompressibleNewtonian::stress
 ) const
 {
     const scalar c2 = c_*c_, rho0 = rho_, twoMu = 2*mu_;
+    if (bulkViscosity_ > 0)
+    {
+        const scalar b1RhoC = bulkViscosity_*rho0*c_;
+        parallelFor(begin, end, [&](const label k)
+        {
+            const scalar* g = grad + 4*k;
+            const scalar div = g[0] + g[3];
+            // Pressure (eq. 7) less the bulk viscous stress
+            const scalar pq =
+                c2*(mass[k]/area[k] - rho0)
+              - b1RhoC*bulkViscosityLength(area[k])*div;
+            const scalar div3 = div/3;
+            scalar* s = stress + 4*k;
+            s[0] = -pq + twoMu*(g[0] - div3);
+            s[1] = 0.5*twoMu*(g[1] + g[2]);
+            s[2] = s[1];
+            s[3] = -pq + twoMu*(g[3] - div3);
+        });
+        return true;
+    }
     parallelFor(begin, end, [&](const label k)
     {
         const scalar* g = grad + 4*k;
@@ -84,11 +110,16 @@ void Foam::weaklyCompressibleNewtonian::cauchyStress
     {
         const scalar* g = grad + 4*k;
         const scalar p = c_*c_*(mass[k]/area[k] - rho_);
-        const scalar div3 = (g[0] + g[3])/3;
+        const scalar div = g[0] + g[3];
+        const scalar div3 = div/3;
+        // The bulk viscous stress is in the tensor, not in the pressure
+        // (the thermodynamic one, eq. 7)
+        const scalar pq =
+            p - bulkViscosity_*rho_*c_*bulkViscosityLength(area[k])*div;
         scalar* s = sigma6 + 6*(k - begin);
-        s[0] = -p + 2*mu_*(g[0] - div3);
-        s[1] = -p + 2*mu_*(g[3] - div3);
-        s[2] = -p - 2*mu_*div3;
+        s[0] = -pq + 2*mu_*(g[0] - div3);
+        s[1] = -pq + 2*mu_*(g[3] - div3);
+        s[2] = -pq - 2*mu_*div3;
         s[3] = mu_*(g[1] + g[2]);
         s[4] = 0;
         s[5] = 0;

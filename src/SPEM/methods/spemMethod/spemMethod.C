@@ -883,6 +883,11 @@ void Foam::spemMethod::describeElementLimit
     {
         case stepLimit::criterion::acoustic:
             os  << "h/c with c " << mat.waveSpeed() << " m/s (entry c)";
+            if (mat.acousticStepFactor() < 1)
+            {
+                os  << " times " << mat.acousticStepFactor()
+                    << " for the bulk viscosity (entry bulkViscosity)";
+            }
             break;
         case stepLimit::criterion::viscous:
             os  << "0.25 h^2 rho/mu with mu "

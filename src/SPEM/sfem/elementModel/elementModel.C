@@ -443,11 +443,13 @@ bool Foam::elementModel::elementPass(const bool solidsOnly)
                 failure_ = os.str();
                 ok = false;
             }
-            timeScale = std::min(timeScale, hMin/c);
-            limit.keepSmaller(stepLimit::criterion::acoustic, hMin/c, r, hMin);
+            // Damping of the shortest waves (bulk viscosity) shortens it
+            const scalar acoustic = hMin/c*mat.acousticStepFactor();
+            timeScale = std::min(timeScale, acoustic);
+            limit.keepSmaller(stepLimit::criterion::acoustic, acoustic, r, hMin);
             fluidLimit.keepSmaller
             (
-                stepLimit::criterion::acoustic, hMin/c, r, hMin
+                stepLimit::criterion::acoustic, acoustic, r, hMin
             );
             // Explicit viscous diffusion limit
             if (nu > 0)
