@@ -39,7 +39,7 @@ Foam::scalar Foam::minInteriorAngle::readLimit
 
 Foam::minInteriorAngle::minInteriorAngle(const dictionary& conversionDict)
 :
-    distortionCriterion(),
+    distortionCriterionModel(),
     limit_(readLimit(conversionDict)),
     cotLimit_(1/std::tan(degToRad(limit_)))
 {}

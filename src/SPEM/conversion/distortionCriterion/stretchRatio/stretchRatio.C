@@ -30,7 +30,7 @@ Foam::scalar Foam::stretchRatio::readLimit(const dictionary& conversionDict)
 
 Foam::stretchRatio::stretchRatio(const dictionary& conversionDict)
 :
-    distortionCriterion(),
+    distortionCriterionModel(),
     limit_(readLimit(conversionDict)),
     limitPlusInverse_(limit_ + 1/limit_)
 {}
