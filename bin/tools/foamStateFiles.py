@@ -207,10 +207,19 @@ def readVtkArrays(path):
         fmt = a.get("format", "ascii")
         if fmt == "ascii":
             text = xml[m.end():xml.find("</DataArray>", m.end())]
-            # InformationKey elements (component names) may come first
+            # InformationKey elements (component names, ranges, with
+            # nested Value elements) may come first
+            text = re.sub(r"<InformationKey\b.*?</InformationKey>", " ", text,
+                          flags=re.S)
             text = re.sub(r"<[^>]*>[^<]*</[^>]*>|<[^>]*/>", " ", text)
             convert = float if code in "df" else int
-            arrays[key] = [convert(w) for w in text.split()]
+            values = [convert(w) for w in text.split()]
+            if code == "f":
+                # VTK writes a float's shortest text (0.1), which as a
+                # double differs from the same float read raw
+                values = list(struct.unpack("<%df" % len(values),
+                                            struct.pack("<%df" % len(values), *values)))
+            arrays[key] = values
             continue
         if fmt != "appended" or encoding != "raw":
             raise ValueError("%s: %s data (encoding %s) not supported: only"

@@ -22,6 +22,7 @@ Description
 \*---------------------------------------------------------------------------*/
 
 #include "distortionCriterion.H"
+#include "parallelLoop.H"
 #include "minInteriorAngle.H"
 #include "stretchRatio.H"
 #include "presetParticleRegion.H"
@@ -447,6 +448,75 @@ TEST(DistortionCriterionSelection, selectedByCriterionKeywordWithMinInteriorAngl
     (
         stretchOs.str(), "stretchRatio > 4 (principal stretches since t = 0)"
     );
+}
+
+
+TEST(DistortionCriterionSelection, markDistortedOfARangeIsEachElementsDistorted)
+{
+    // markDistorted() (one virtual call per range, groupConversion's every
+    // step) against distorted() element by element, for every model, on a
+    // range long enough to be split among threads (above minParallelLoop)
+    // and a short one, of randomly sheared triangles
+    const label nElements = 3*minParallelLoop + 17;
+    std::vector<scalar> X, x;
+    std::vector<label> nodes;
+    unsigned seed = 12345;
+    const auto random = [&seed]()
+    {
+        seed = 1103515245u*seed + 12345u;
+        return scalar((seed >> 8) & 0xffff)/0xffff;
+    };
+    for (label e = 0; e < nElements; ++e)
+    {
+        const scalar ref[6] = {0, 0, 1, 0, 0, 1};
+        for (label k = 0; k < 3; ++k)
+        {
+            nodes.push_back(label(X.size()/2));
+            X.push_back(ref[2*k] + e);
+            X.push_back(ref[2*k + 1]);
+            // Up to 60 % of an edge: some distorted, some not, some inverted
+            x.push_back(ref[2*k] + e + 0.6*(random() - 0.5));
+            x.push_back(ref[2*k + 1] + 0.6*(random() - 0.5));
+        }
+    }
+    for
+    (
+        const std::string criterion :
+        {"minInteriorAngle", "stretchRatio", "none"}
+    )
+    {
+        SCOPED_TRACE(criterion);
+        const autoPtr<distortionCriterion> c = distortionCriterion::New
+        (
+            dictionaryFrom("criterion " + criterion + ";")
+        );
+        for (const label end : {nElements, label(40)})
+        {
+            std::vector<unsigned char> marked(nElements, 7);
+            c->markDistorted(0, end, nodes.data(), x.data(), X.data(), marked.data());
+            label nDistorted = 0;
+            for (label e = 0; e < end; ++e)
+            {
+                const label* n = &nodes[3*e];
+                const bool expected = c->distorted
+                (
+                    &x[2*n[0]], &x[2*n[1]], &x[2*n[2]],
+                    &X[2*n[0]], &X[2*n[1]], &X[2*n[2]]
+                );
+                ASSERT_EQ(bool(marked[e]), expected) << "element " << e;
+                nDistorted += expected;
+            }
+            for (label e = end; e < nElements; ++e)
+            {
+                ASSERT_EQ(marked[e], 7) << "written outside the range";
+            }
+            if (criterion != "none" && end == nElements)
+            {
+                EXPECT_GT(nDistorted, 0);
+                EXPECT_LT(nDistorted, end);
+            }
+        }
+    }
 }
 
 

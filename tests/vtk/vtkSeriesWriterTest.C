@@ -36,6 +36,7 @@ Description
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
+#include <limits>
 #include <stdexcept>
 #include <string>
 #include <vector>
@@ -322,16 +323,25 @@ TEST_F(VtkSeries, everyFormatReadsBackWithTheSameValues)
     const std::vector<double> particleRho = {1000.0/3.0, 999.1, M_PI};
     const meshFields fields(0.1 + 0.2);
 
+    // In both precisions: Float32 gives each double rounded to float
+    for (const auto precision :
+        {seriesWriter::precision::float64, seriesWriter::precision::float32})
     for (const formatCase& f : formats)
     {
-        SCOPED_TRACE(f.name);
-        const std::string baseName = "case_" + f.name;
+        const bool single = precision == seriesWriter::precision::float32;
+        const auto stored = [single](const double v)
+        {
+            return single ? double(float(v)) : v;
+        };
+        SCOPED_TRACE(f.name + (single ? " float32" : " float64"));
+        const std::string baseName =
+            "case_" + f.name + (single ? "_float32" : "_float64");
         const particleBlock cloud
         {
             "particles", 3, particleXY.data(),
             {{"density", 1, particleRho.data()}}
         };
-        seriesWriter(dir.string(), baseName, 0, f.format)
+        seriesWriter(dir.string(), baseName, 0, f.format, precision)
             .write(0.3, {fields.block()}, {cloud});
 
         const std::string stem = baseName + "_000000";
@@ -359,8 +369,8 @@ TEST_F(VtkSeries, everyFormatReadsBackWithTheSameValues)
         {
             double x[3];
             grid->GetPoint(vtkIdType(p), x);
-            EXPECT_EQ(x[0], meshPoints[2*p]);
-            EXPECT_EQ(x[1], meshPoints[2*p + 1]);
+            EXPECT_EQ(x[0], stored(meshPoints[2*p]));
+            EXPECT_EQ(x[1], stored(meshPoints[2*p + 1]));
         }
         ASSERT_EQ(grid->GetNumberOfCells(), vtkIdType(nMeshTriangles));
         vtkNew<vtkIdList> nodes;
@@ -380,22 +390,25 @@ TEST_F(VtkSeries, everyFormatReadsBackWithTheSameValues)
         ASSERT_TRUE(pressure && stress && displacement);
         for (std::size_t t = 0; t < nMeshTriangles; ++t)
         {
-            EXPECT_EQ(pressure->GetComponent(t, 0), fields.pressure[t]);
+            EXPECT_EQ(pressure->GetComponent(t, 0), stored(fields.pressure[t]));
             for (int c = 0; c < 6; ++c)
             {
-                EXPECT_EQ(stress->GetComponent(t, c), fields.stress[6*t + c]);
+                EXPECT_EQ
+                (
+                    stress->GetComponent(t, c), stored(fields.stress[6*t + c])
+                );
             }
         }
         for (std::size_t p = 0; p < nMeshPoints; ++p)
         {
             EXPECT_EQ
             (
-                displacement->GetComponent(p, 0), fields.displacement[2*p]
+                displacement->GetComponent(p, 0), stored(fields.displacement[2*p])
             );
             EXPECT_EQ
             (
                 displacement->GetComponent(p, 1),
-                fields.displacement[2*p + 1]
+                stored(fields.displacement[2*p + 1])
             );
             EXPECT_EQ(displacement->GetComponent(p, 2), 0.0);
         }
@@ -413,9 +426,9 @@ TEST_F(VtkSeries, everyFormatReadsBackWithTheSameValues)
         {
             double x[3];
             particles->GetPoint(p, x);
-            EXPECT_EQ(x[0], particleXY[2*p]) << "particle " << p;
-            EXPECT_EQ(x[1], particleXY[2*p + 1]) << "particle " << p;
-            EXPECT_EQ(rho->GetComponent(p, 0), particleRho[p]);
+            EXPECT_EQ(x[0], stored(particleXY[2*p])) << "particle " << p;
+            EXPECT_EQ(x[1], stored(particleXY[2*p + 1])) << "particle " << p;
+            EXPECT_EQ(rho->GetComponent(p, 0), stored(particleRho[p]));
         }
     }
 }
@@ -698,6 +711,33 @@ TEST_F(VtkSeries, float32RoundsRealsAndKeepsIntegerFieldsExact)
     EXPECT_EQ(grid->GetPoints()->GetDataType(), VTK_DOUBLE);
     EXPECT_EQ(grid->GetCellData()->GetArray("stress")->GetDataType(), VTK_DOUBLE);
     EXPECT_EQ(grid->GetCellData()->GetArray("region")->GetDataType(), VTK_INT);
+
+    // A double beyond float's range is an infinity of its sign
+    {
+        const std::vector<double> huge = {1e300, -1e300, 3};
+        triangleBlock big = fields.block();
+        big.cellData.push_back({"huge", 1, huge.data()});
+        seriesWriter(dir.string(), "huge", 0, seriesWriter::format::raw,
+            seriesWriter::precision::float32).write(0, {big}, {});
+        auto hugeBlocks = readMultiBlock(dir/"huge_000000.vtm");
+        ASSERT_TRUE(hugeBlocks);
+        auto* hugeGrid = vtkUnstructuredGrid::SafeDownCast(hugeBlocks->GetBlock(0));
+        ASSERT_TRUE(hugeGrid);
+        vtkDataArray* h = hugeGrid->GetCellData()->GetArray("huge");
+        ASSERT_TRUE(h);
+        EXPECT_EQ(h->GetComponent(0, 0), std::numeric_limits<double>::infinity());
+        EXPECT_EQ(h->GetComponent(1, 0), -std::numeric_limits<double>::infinity());
+        EXPECT_EQ(h->GetComponent(2, 0), 3.0);
+    }
+
+    // An integer field of more than one component is refused
+    {
+        const std::vector<double> pairs = {0, 1, 2, 3, 4, 5};
+        triangleBlock bad = fields.block();
+        bad.cellData.push_back({"pairs", 2, pairs.data(), true});
+        seriesWriter writer(dir.string(), "pairs", 0);
+        EXPECT_THROW(writer.write(0, {bad}, {}), std::invalid_argument);
+    }
 
     // A value of an integer field that is not a whole number is refused
     const std::vector<double> notWhole = {0, 1.5, 2};

@@ -57,44 +57,66 @@ Foam::weaklyCompressibleNewtonian::weaklyCompressibleNewtonian
 {}
 
 
-bool Foam::weaklyCompressibleNewtonian::stress
-(
-    const label begin, const label end, const scalar* grad,
-    const scalar* area, const scalar* mass, scalar* stress
-) const
+namespace
 {
-    const scalar c2 = c_*c_, rho0 = rho_, twoMu = 2*mu_;
-    if (bulkViscosity_ > 0)
-    {
-        const scalar b1RhoC = bulkViscosity_*rho0*c_;
-        parallelFor(begin, end, [&](const label k)
-        {
-            const scalar* g = grad + 4*k;
-            const scalar div = g[0] + g[3];
-            // Pressure (eq. 7) less the bulk viscous stress
-            const scalar pq =
-                c2*(mass[k]/area[k] - rho0)
-              - b1RhoC*bulkViscosityLength(area[k])*div;
-            const scalar div3 = div/3;
-            scalar* s = stress + 4*k;
-            s[0] = -pq + twoMu*(g[0] - div3);
-            s[1] = 0.5*twoMu*(g[1] + g[2]);
-            s[2] = s[1];
-            s[3] = -pq + twoMu*(g[3] - div3);
-        });
-        return true;
-    }
+
+//- The fluid stress of domains [begin, end), eqs. 6-10; with Bulk the bulk
+//  viscous stress b1RhoC l div(v) too (taken from the pressure, so that
+//  without it the arithmetic is that of eqs. 7-10 alone)
+template<bool Bulk>
+void fluidStress
+(
+    const Foam::label begin, const Foam::label end,
+    const Foam::scalar* grad, const Foam::scalar* area,
+    const Foam::scalar* mass, Foam::scalar* stress,
+    const Foam::scalar c2, const Foam::scalar rho0, const Foam::scalar twoMu,
+    const Foam::scalar b1RhoC
+)
+{
+    using namespace Foam;
     parallelFor(begin, end, [&](const label k)
     {
         const scalar* g = grad + 4*k;
-        const scalar p = c2*(mass[k]/area[k] - rho0);           // eq. 7
-        const scalar div3 = (g[0] + g[3])/3;
+        const scalar div = g[0] + g[3];
+        scalar p = c2*(mass[k]/area[k] - rho0);                 // eq. 7
+        if constexpr (Bulk)
+        {
+            p -= b1RhoC
+                *weaklyCompressibleNewtonian::bulkViscosityLength(area[k])*div;
+        }
+        const scalar div3 = div/3;
         scalar* s = stress + 4*k;
         s[0] = -p + twoMu*(g[0] - div3);                         // eqs. 9-10
         s[1] = 0.5*twoMu*(g[1] + g[2]);
         s[2] = s[1];
         s[3] = -p + twoMu*(g[3] - div3);
     });
+}
+
+} // End anonymous namespace
+
+
+bool Foam::weaklyCompressibleNewtonian::stress
+(
+    const label begin, const label end, const scalar* grad,
+    const scalar* area, const scalar* mass, scalar* stress
+) const
+{
+    const scalar c2 = c_*c_, b1RhoC = bulkViscosity_*rho_*c_;
+    if (bulkViscosity_ > 0)
+    {
+        fluidStress<true>
+        (
+            begin, end, grad, area, mass, stress, c2, rho_, 2*mu_, b1RhoC
+        );
+    }
+    else
+    {
+        fluidStress<false>
+        (
+            begin, end, grad, area, mass, stress, c2, rho_, 2*mu_, b1RhoC
+        );
+    }
     return true;
 }
 
@@ -114,8 +136,11 @@ void Foam::weaklyCompressibleNewtonian::cauchyStress
         const scalar div3 = div/3;
         // The bulk viscous stress is in the tensor, not in the pressure
         // (the thermodynamic one, eq. 7)
-        const scalar pq =
-            p - bulkViscosity_*rho_*c_*bulkViscosityLength(area[k])*div;
+        scalar pq = p;
+        if (bulkViscosity_ > 0)
+        {
+            pq -= bulkViscosity_*rho_*c_*bulkViscosityLength(area[k])*div;
+        }
         scalar* s = sigma6 + 6*(k - begin);
         s[0] = -pq + 2*mu_*(g[0] - div3);
         s[1] = -pq + 2*mu_*(g[3] - div3);

@@ -156,6 +156,20 @@ Foam::spemMethods::SPH::SPH
 :
     spemMethod(c)
 {
+    // The bulk viscosity is a stress of the fluid elements, which become
+    // particles here. Not an error: a tutorial that sets it for SPEM keeps
+    // the entry when a user switches it to SPH
+    forAll(materials, r)
+    {
+        if (materials.set(r) && materials[r].bulkViscosity() > 0)
+        {
+            IOWarningInFunction(c.properties)
+                << "regions/" << materials[r].name() << "/bulkViscosity "
+                << materials[r].bulkViscosity() << " damps the fluid"
+                << " elements only; method SPH has none and ignores it"
+                << endl;
+        }
+    }
     const std::vector<scalar> density =
         initialDensity
         (

@@ -883,10 +883,11 @@ void Foam::spemMethod::describeElementLimit
     {
         case stepLimit::criterion::acoustic:
             os  << "h/c with c " << mat.waveSpeed() << " m/s (entry c)";
-            if (mat.acousticStepFactor() < 1)
+            if (mat.bulkViscosity() > 0)
             {
-                os  << " times " << mat.acousticStepFactor()
-                    << " for the bulk viscosity (entry bulkViscosity)";
+                os  << " and h an altitude times sqrt(1 + xi^2) - xi,"
+                    << " xi = " << mat.bulkViscosity() << " sqrt(A)/h"
+                    << " (entry bulkViscosity)";
             }
             break;
         case stepLimit::criterion::viscous:

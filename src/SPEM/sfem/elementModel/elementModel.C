@@ -414,6 +414,9 @@ bool Foam::elementModel::elementPass(const bool solidsOnly)
             // Performance critical: every fluid element, every step
             const scalar c = mat.waveSpeed();
             const scalar nu = mat.kinematicViscosity();
+            const scalar b1 = mat.bulkViscosity();
+            // The smallest altitude; with a bulk viscosity, each times
+            // the factor of its damping ratio b1 sqrt(A)/h
             scalar hMin = std::numeric_limits<scalar>::max();
             const bool regionOk = parallelAllMin
             (
@@ -426,7 +429,14 @@ bool Foam::elementModel::elementPass(const bool solidsOnly)
                     scalar AgradN[6];
                     const scalar A = triangleAreaGradN(x0, x1, x2, AgradN);
                     elemArea_[el] = A;
-                    least = std::min(least, minAltitude(x0, x1, x2, A));
+                    const scalar h = minAltitude(x0, x1, x2, A);
+                    least = std::min
+                    (
+                        least,
+                        b1 > 0
+                      ? h*spemMaterial::dampedStepFactor(b1*std::sqrt(A)/h)
+                      : h
+                    );
                     areaGradient
                     (
                         AgradN, v + 2*n[0], v + 2*n[1], v + 2*n[2],
@@ -443,13 +453,11 @@ bool Foam::elementModel::elementPass(const bool solidsOnly)
                 failure_ = os.str();
                 ok = false;
             }
-            // Damping of the shortest waves (bulk viscosity) shortens it
-            const scalar acoustic = hMin/c*mat.acousticStepFactor();
-            timeScale = std::min(timeScale, acoustic);
-            limit.keepSmaller(stepLimit::criterion::acoustic, acoustic, r, hMin);
+            timeScale = std::min(timeScale, hMin/c);
+            limit.keepSmaller(stepLimit::criterion::acoustic, hMin/c, r, hMin);
             fluidLimit.keepSmaller
             (
-                stepLimit::criterion::acoustic, acoustic, r, hMin
+                stepLimit::criterion::acoustic, hMin/c, r, hMin
             );
             // Explicit viscous diffusion limit
             if (nu > 0)

@@ -157,11 +157,47 @@ void select
 }
 
 
-//- The vtkFormat names, in the order of seriesWriter::format
+//- The vtkFormat names and what each selects
 const Foam::wordList formatNames{"raw", "lz4", "zlib", "ascii"};
+const Foam::vtkOutput::seriesWriter::format formatValues[] =
+{
+    Foam::vtkOutput::seriesWriter::format::raw,
+    Foam::vtkOutput::seriesWriter::format::lz4,
+    Foam::vtkOutput::seriesWriter::format::zlib,
+    Foam::vtkOutput::seriesWriter::format::ascii
+};
 
-//- The vtkPrecision names, in the order of seriesWriter::precision
-const Foam::wordList precisionNames{"double", "single"};
+//- The vtkPrecision names and what each selects
+const Foam::wordList precisionNames{"single", "double"};
+const Foam::vtkOutput::seriesWriter::precision precisionValues[] =
+{
+    Foam::vtkOutput::seriesWriter::precision::float32,
+    Foam::vtkOutput::seriesWriter::precision::float64
+};
+
+
+//- The index in names of the word entry key of controls (names[0] if
+//  absent); a FatalIOError naming the file, the keyword and the valid
+//  names if it is none of them
+Foam::label readChoice
+(
+    const Foam::dictionary& controls,
+    const Foam::word& key,
+    const Foam::wordList& names
+)
+{
+    using namespace Foam;
+    const word choice(controls.getOrDefault<word>(key, names[0]));
+    const label index = names.find(choice);
+    if (index < 0)
+    {
+        FatalIOErrorInFunction(controls)
+            << "Unknown " << key << " '" << choice << "' in "
+            << controls.name() << nl << "Valid: " << names
+            << exit(FatalIOError);
+    }
+    return index;
+}
 
 } // End anonymous namespace
 
@@ -206,30 +242,9 @@ Foam::vtkModelWriter::vtkModelWriter(const Time& runTime)
     precision_(vtkOutput::seriesWriter::precision::float32)
 {
     const dictionary& controls = runTime.controlDict();
-    const word format(controls.getOrDefault<word>("vtkFormat", "raw"));
-    const label index = formatNames.find(format);
-    if (index < 0)
-    {
-        FatalIOErrorInFunction(controls)
-            << "Unknown vtkFormat '" << format << "' in " << controls.name()
-            << nl << "Valid formats: " << formatNames
-            << exit(FatalIOError);
-    }
-    format_ = vtkOutput::seriesWriter::format(index);
-
-    const word precision
-    (
-        controls.getOrDefault<word>("vtkPrecision", "single")
-    );
-    const label precisionIndex = precisionNames.find(precision);
-    if (precisionIndex < 0)
-    {
-        FatalIOErrorInFunction(controls)
-            << "Unknown vtkPrecision '" << precision << "' in "
-            << controls.name() << nl << "Valid: " << precisionNames
-            << exit(FatalIOError);
-    }
-    precision_ = vtkOutput::seriesWriter::precision(precisionIndex);
+    format_ = formatValues[readChoice(controls, "vtkFormat", formatNames)];
+    precision_ =
+        precisionValues[readChoice(controls, "vtkPrecision", precisionNames)];
 
     if (!controls.found("vtkFields")) return;
     const wordList selected(controls.get<wordList>("vtkFields"));

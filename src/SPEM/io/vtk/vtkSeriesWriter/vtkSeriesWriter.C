@@ -28,10 +28,12 @@
 #include <cstring>
 #include <filesystem>
 #include <fstream>
+#include <limits>
 #include <set>
 #include <sstream>
 #include <stdexcept>
 #include <system_error>
+#include <type_traits>
 
 namespace fs = std::filesystem;
 
@@ -226,6 +228,14 @@ void checkFields
               + " components; 1, 2, 3 or 6 expected"
             );
         }
+        if (f.integer && f.nComponents != 1)
+        {
+            throw std::invalid_argument
+            (
+                where + " is an integer field of " + std::to_string(f.nComponents)
+              + " components: integer fields have one"
+            );
+        }
         if (nTuples > 0 && !f.values)
         {
             throw std::invalid_argument(where + " has no values");
@@ -250,6 +260,18 @@ void copyTuples
     array->SetNumberOfComponents(nStored);
     array->SetNumberOfTuples(vtkIdType(nTuples));
     if (nTuples == 0) return;
+    // A double beyond float's range becomes an infinity of its sign (the
+    // plain conversion is undefined there); NaN stays NaN
+    const auto stored = [](const double v)
+    {
+        if constexpr (std::is_same_v<valueType, float>)
+        {
+            constexpr double most = std::numeric_limits<float>::max();
+            if (v > most) return std::numeric_limits<float>::infinity();
+            if (v < -most) return -std::numeric_limits<float>::infinity();
+        }
+        return valueType(v);
+    };
     // Performance-critical: plain loop over raw storage, no per-value
     // virtual calls (one write may hold millions of tuples)
     valueType* out = array->GetPointer(0);
@@ -257,7 +279,7 @@ void copyTuples
     {
         for (int c = 0; c < nIn; ++c)
         {
-            out[nStored*i + c] = valueType(in[nIn*i + c]);
+            out[nStored*i + c] = stored(in[nIn*i + c]);
         }
         for (int c = nIn; c < nStored; ++c) out[nStored*i + c] = 0;
     }
@@ -427,7 +449,15 @@ vtkSmartPointer<vtkUnstructuredGrid> makeTriangleGrid
 
     // Performance-critical: copy and range-check in one branch-free pass
     const std::size_t nLabels = 3*block.nTriangles;
-    // Int32: the labels are ints (half the bytes of VTK's default Int64)
+    // Int32: the labels are ints (half the bytes of VTK's default Int64);
+    // the offsets, up to 3 nTriangles, must fit too
+    if (block.nTriangles > std::size_t(INT_MAX)/3)
+    {
+        throw std::invalid_argument
+        (
+            where + " has more triangles than Int32 offsets can count"
+        );
+    }
     vtkNew<vtkTypeInt32Array> connectivity;
     connectivity->SetNumberOfValues(vtkIdType(nLabels));
     bool inRange = true;
