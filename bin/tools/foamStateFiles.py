@@ -215,8 +215,9 @@ def readVtkArrays(path):
             convert = float if code in "df" else int
             values = [convert(w) for w in text.split()]
             if code == "f":
-                # VTK writes a float's shortest text (0.1), which as a
-                # double differs from the same float read raw
+                # A Float32 written as text is read back as the float it
+                # was (VTK 9.1 writes it with 17 digits; a writer of the
+                # shortest text, 0.1, would otherwise read as another double)
                 values = list(struct.unpack("<%df" % len(values),
                                             struct.pack("<%df" % len(values), *values)))
             arrays[key] = values
