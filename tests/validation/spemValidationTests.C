@@ -870,17 +870,13 @@ damBreakProfiles
     replaceEntry(caseDir/"system/spemSchemes", "method", method);
     if (slide)
     {
-        std::string text =
-            testFiles::readText(caseDir/"constant/spemProperties");
-        const std::string walls = "walls       { type noSlipWall; }";
-        const size_t at = text.find(walls);
-        if (at == std::string::npos) return {};
-        text.replace
+        testFiles::replaceText
         (
-            at, walls.size(),
+            caseDir/"constant/spemProperties",
+            "walls       { type noSlipWall; }",
             "walls { type noSlipWall; fluidElements slide; }"
         );
-        std::ofstream(caseDir/"constant/spemProperties") << text;
+        if (::testing::Test::HasFatalFailure()) return {};
     }
     replaceEntry(caseDir/"system/controlDict", "endTime", "0.25");
     replaceEntry(caseDir/"system/controlDict", "writeInterval", "0.025");
@@ -1174,15 +1170,14 @@ TEST(SpemValidation, multiResolutionInterfaceStaysQuietBelowItsCourantLimit)
     const fs::path caseDir =
         copyTutorial("cylinderWaterExit", "spemMultiResolutionStillCylinder");
     replaceEntry(caseDir/"system/spemSchemes", "method", "multiResolutionSPEM");
-    {
-        const fs::path bodies = caseDir/"constant/rigidBodyProperties";
-        std::string text = testFiles::readText(bodies);
-        const std::string moving = "velocity    (0 0.39 0);";
-        const size_t at = text.find(moving);
-        ASSERT_NE(at, std::string::npos);
-        text.replace(at, moving.size(), "velocity    (0 0 0);");
-        std::ofstream(bodies) << text;
-    }
+    ASSERT_NO_FATAL_FAILURE
+    (
+        testFiles::replaceText
+        (
+            caseDir/"constant/rigidBodyProperties",
+            "velocity    (0 0.39 0);", "velocity    (0 0 0);"
+        )
+    );
     replaceEntry(caseDir/"system/controlDict", "endTime", "0.01");
     ASSERT_TRUE(runCase(caseDir));
     const std::string warning = "starts to oscillate from Courant number 0.7";

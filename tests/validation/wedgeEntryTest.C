@@ -305,7 +305,6 @@ TEST(WedgeWaterEntry, multiResolutionRefinedRegionFollowsTheWedge)
     {
         // The box's corners and bodyReach, in the conversion dictionary
         const fs::path schemes = caseDir/"system/spemSchemes";
-        std::string text = testFiles::readText(schemes);
         for
         (
             const auto& [from, to] :
@@ -320,11 +319,8 @@ TEST(WedgeWaterEntry, multiResolutionRefinedRegionFollowsTheWedge)
             }
         )
         {
-            const std::size_t at = text.find(from);
-            ASSERT_NE(at, std::string::npos) << from << " not in " << schemes;
-            text.replace(at, from.size(), to);
+            ASSERT_NO_FATAL_FAILURE(testFiles::replaceText(schemes, from, to));
         }
-        std::ofstream(schemes) << text;
         // The state at the end
         replaceEntry(caseDir/"system/controlDict", "writeInterval", "0.017");
     };
