@@ -186,8 +186,17 @@ bool Foam::wallContact::correctStructures
             }
             continue;
         }
-        // Nothing within reach: deep inside, or far behind a wall
-        if (!tank_.outside(px, py)) continue;
+        // Nothing within reach: deep inside, or far behind a wall. Deep
+        // inside, every boundary edge is at least reach away: the node
+        // moves by that before it can touch one (a plate's nodes above its
+        // bottom face, most of the plate, looked up at every sub-step
+        // before)
+        if (!tank_.outside(px, py))
+        {
+            const scalar clearance = (1 - 1e-9)*tank_.reach();
+            clearanceSqr_[i] = clearance*clearance;
+            continue;
+        }
         std::ostringstream os;
         os  << "structure node " << n << " at (" << px << ' ' << py
             << ") went more than " << tank_.reach() << " m through a wall"
