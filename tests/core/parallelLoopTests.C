@@ -5,7 +5,11 @@ Description
     range exactly once and give the serial loop's result, below the size
     at which they share the range among threads (no parallel region) and
     above it (an OpenMP region on the threads there are); parallelAll
-    does not stop at the first false.
+    does not stop at the first false. threadBlock cuts a range into
+    contiguous blocks in thread order that cover it once, for any team
+    size; a threadTeam's sync() makes what each thread wrote before it
+    visible to all after it, over many passes in a row; a helper loop
+    inside a team opens no region of its own.
 
 \*---------------------------------------------------------------------------*/
 
@@ -14,6 +18,7 @@ Description
 #include <gtest/gtest.h>
 
 #include <limits>
+#include <numeric>
 #include <vector>
 
 using namespace Foam;
@@ -102,6 +107,96 @@ TEST(ParallelLoop, parallelAllMinGivesTheLeastAndTheConjunction)
         );
         EXPECT_EQ(start, 0.5);
     }
+}
+
+TEST(ParallelLoop, threadBlocksCoverTheRangeOnceInThreadOrder)
+{
+    for (const label n : {0, 1, 2, 5, 1000, 1001})
+    {
+        #pragma omp parallel num_threads(3)
+        {
+            label b, e;
+            threadBlock(7, 7 + n, b, e);
+            #pragma omp critical
+            {
+                SCOPED_TRACE(n);
+                const label t = threadTeam::rank(), nT = threadTeam::size();
+                // Block t starts where the t earlier ones end: sizes differ
+                // by at most one, the larger first
+                const label size = n/nT, extra = n % nT;
+                EXPECT_EQ(b, 7 + t*size + std::min(t, extra));
+                EXPECT_EQ(e - b, size + (t < extra ? 1 : 0));
+            }
+        }
+        label b, e;
+        threadBlock(7, 7 + n, b, e);
+        EXPECT_EQ(b, 7);
+        EXPECT_EQ(e, 7 + n);
+    }
+}
+
+
+TEST(ParallelLoop, threadTeamSyncPublishesEachPassToTheNext)
+{
+    // Each pass sets a[i] from b of the neighbours, which other threads
+    // wrote in the pass before; the serial loop's result must come out of
+    // any team size, over many passes (a missing or leaky sync shows as a
+    // stale neighbour)
+    const label n = 1000, passes = 200;
+    const auto run = [&](const int threads)
+    {
+        std::vector<double> a(n), b(n);
+        std::iota(a.begin(), a.end(), 0.0);
+        threadTeam team;
+        #pragma omp parallel num_threads(threads) if(threads > 1)
+        for (label p = 0; p < passes; ++p)
+        {
+            label lo, hi;
+            threadBlock(0, n, lo, hi);
+            for (label i = lo; i < hi; ++i)
+            {
+                b[i] = 0.5*a[i] + 0.25*(a[(i + 1) % n] + a[(i + n - 1) % n]) + 1;
+            }
+            team.sync();
+            for (label i = lo; i < hi; ++i) a[i] = b[(i + 7) % n];
+            team.sync();
+        }
+        return a;
+    };
+    const std::vector<double> one = run(1);
+    for (const int threads : {2, 3})
+    {
+        const std::vector<double> many = run(threads);
+        for (label i = 0; i < n; ++i)
+        {
+            ASSERT_EQ(many[i], one[i]) << threads << " threads, item " << i;
+        }
+    }
+}
+
+
+TEST(ParallelLoop, helpersInsideATeamOpenNoRegionOfTheirOwn)
+{
+    // Above minParallelLoop, but called by each thread of a team on its
+    // own share: the loop stays on the calling thread
+    const label n = 2*minParallelLoop + 3;
+    int nested = 0, teams = 0;
+    #pragma omp parallel num_threads(2) reduction(+: nested, teams)
+    {
+        teams += threadTeam::size() == 2;
+        const int outer = threadTeam::rank();
+        parallelFor(0, n, [&](const label)
+        {
+            nested += omp_get_active_level() != 1;
+        });
+        const bool sameThread = parallelAll(0, n, [&](const label)
+        {
+            return threadTeam::rank() == outer;
+        });
+        nested += !sameThread;
+    }
+    EXPECT_EQ(teams, 2);
+    EXPECT_EQ(nested, 0);
 }
 
 // ************************************************************************* //
