@@ -308,6 +308,57 @@ void plateStep(benchmark::State& state)
     setCounters(state, em);
 }
 
+//- The solid sub-steps of a fluid step as spemFoam takes them
+//  (spemMethod::advanceElements): advanceFluidPartition(dt), then
+//  subStepsPerStep sub-steps of the plate alone, every thread of the
+//  benchmark's count in one parallel region sharing the passes (on one
+//  thread, none), to measure where a team starts to pay
+//  (minParallelSolid). Time per sub-step: the time column over
+//  subStepsPerStep
+const int subStepsPerStep = 100;
+
+void plateSubSteps(benchmark::State& state)
+{
+    elementModel& em = plateCase::cachedPlate(state.range(0));
+    const int nThreads = int(state.range(1));
+    omp_set_num_threads(nThreads);
+    plateCase::setRest(em);
+    if (!em.evaluate())
+    {
+        state.SkipWithError(em.failure().c_str());
+        return;
+    }
+    const scalar dt = subStepsPerStep*0.3*em.solidStableDeltaT();
+    const scalar subDt = dt/subStepsPerStep;
+    bool ok = true;
+    for (auto _ : state)
+    {
+        ok = em.advanceFluidPartition(dt);
+        Foam::threadTeam team;
+        #pragma omp parallel if(nThreads > 1)
+        for (int j = 0; ok && j < subStepsPerStep; ++j)
+        {
+            const bool evaluated =
+                j == 0 || em.evaluateSolids(j*subDt, team);
+            const bool advanced =
+                evaluated && em.advanceSolidSubStep(subDt, j*subDt, dt, team);
+            if (team.rank() == 0) ok = advanced;
+            team.sync();
+        }
+        if (!ok)
+        {
+            state.SkipWithError(em.failure().c_str());
+            break;
+        }
+    }
+    setCounters(state, em);
+    state.counters["elementSteps"] = benchmark::Counter
+    (
+        double(state.iterations())*subStepsPerStep*em.nElements(),
+        benchmark::Counter::kIsRate
+    );
+}
+
 //- Plate elements {250 ... 16000} outer, threads {1, 2} inner
 void plateElementsAndThreads(benchmark::internal::Benchmark* b)
 {
@@ -346,6 +397,8 @@ BENCHMARK(evaluateOnly)->Apply(elementsAndThreads)->UseRealTime()
 BENCHMARK(advanceOnly)->Apply(elementsAndThreads)->UseRealTime()
     ->Unit(benchmark::kMillisecond)->ComputeStatistics("max", largest);
 BENCHMARK(plateStep)->Apply(plateElementsAndThreads)->UseRealTime()
+    ->Unit(benchmark::kMicrosecond)->ComputeStatistics("max", largest);
+BENCHMARK(plateSubSteps)->Apply(plateElementsAndThreads)->UseRealTime()
     ->Unit(benchmark::kMicrosecond)->ComputeStatistics("max", largest);
 
 

@@ -56,6 +56,7 @@ Description
 \*---------------------------------------------------------------------------*/
 
 #include "Time.H"
+#include "parallelLoop.H"
 #include "vectorIOField.H"
 #include "scalarIOField.H"
 #include "labelIOList.H"
@@ -248,12 +249,12 @@ const double plateThickness = 0.05;
 
 //- The water column on the plate: patches clamps (the plate's ends),
 //  plateBottom, walls (the water's sides), top
-Foam::triMesh plateColumnMesh(const int nx, const int ny)
+Foam::triMesh plateColumnMesh(const int nx, const int ny, const int plateRows)
 {
     return testMeshes::build
     (
         {
-            {0, columnWidth, -plateThickness, 0, nx, 1, "plate"},
+            {0, columnWidth, -plateThickness, 0, nx, plateRows, "plate"},
             {0, columnWidth, 0, columnHeight, nx, ny, "water"}
         },
         testMeshes::split::alternating,
@@ -338,6 +339,10 @@ protected:
 
     //- Mesh resolution
     int nx_ = nCellsX, ny_ = nCellsY;
+    //- Rows of the plate's cells (addPlate)
+    int plateRows_ = 1;
+    //- Threads of spemFoam's runs
+    int threads_ = 1;
 
     //- The column stands on an elastic plate (addPlate())
     bool plate_ = false;
@@ -502,18 +507,20 @@ protected:
             Foam::fileName(caseDir_.parent_path().string()),
             Foam::fileName(caseName)
         );
-        (plate_ ? plateColumnMesh(nx_, ny_) : columnMesh(nx_, ny_))
+        (plate_ ? plateColumnMesh(nx_, ny_, plateRows_) : columnMesh(nx_, ny_))
             .write(runTime);
         ASSERT_TRUE(fs::exists(caseDir_/"constant"/"spemMesh"/"points"));
     }
 
     //- Run the spemFoam built with these tests on the case, output to
-    //  <case>/<logName>; its exit status (-1 if it did not exit normally)
+    //  <case>/<logName>, on threads_ threads; its exit status (-1 if it
+    //  did not exit normally)
     int runSolver(const std::string& logName = "log.spemFoam") const
     {
         const std::string cmd =
-            "OMP_NUM_THREADS=1 '" SPEM_FOAM "' -case '" + caseDir_.string()
-          + "' > '" + (caseDir_/logName).string() + "' 2>&1";
+            "OMP_NUM_THREADS=" + std::to_string(threads_) + " '" SPEM_FOAM
+            "' -case '" + caseDir_.string() + "' > '"
+          + (caseDir_/logName).string() + "' 2>&1";
         const int status = std::system(cmd.c_str());
         return WIFEXITED(status) ? WEXITSTATUS(status) : -1;
     }
@@ -4838,6 +4845,46 @@ TEST_F(SolverSubCycling, plateSubCyclesAndTheLogSaysWhy)
     setControl("subCyclingLoad", "lagged");
     const std::string refused = runExpectingFatalError();
     EXPECT_TRUE(contains(refused, "subCyclingLoad lagged")) << refused;
+}
+
+
+TEST_F(SolverSubCycling, aPlateAboveMinParallelSolidSubStepsAlikeOnTwoThreads)
+{
+    // A plate of 2 x 510 elements: its sub-steps run in one parallel
+    // region whose threads share each pass (spemMethod::advanceElements,
+    // minParallelSolid); on one thread, without. The written state must
+    // be the same to the bit, the interpolated load's passes over the
+    // fluid elements next to the plate included
+    // 130 x 4 cells: 1040 elements of aspect ratio 3.2; the water's
+    // elongated cells stay elements (no conversion)
+    addPlate();
+    nx_ = 130;
+    ny_ = 8;
+    plateRows_ = 4;
+    ASSERT_GT(2*nx_*plateRows_, Foam::minParallelSolid);
+    schemes_ += "conversion\n{\n    criterion       none;\n}\n";
+    setControl("subCycling", "on");
+    setControl("deltaT", "5e-5");
+    setControl("endTime", "5e-4");
+    setControl("writeInterval", "2");
+    setControl("writeControl", "timeStep");
+    std::vector<std::pair<std::string, std::string>> files[2];
+    for (const int threads : {1, 2})
+    {
+        threads_ = threads;
+        const std::string text = runExpectingSuccess();
+        if (HasFailure()) return;
+        EXPECT_GT(lastSubSteps(text), 1) << text;
+        files[threads - 1] = writtenFiles(caseDir_);
+    }
+    ASSERT_EQ(files[0].size(), files[1].size());
+    ASSERT_GT(files[0].size(), 20u);
+    for (std::size_t i = 0; i < files[0].size(); ++i)
+    {
+        EXPECT_EQ(files[0][i].first, files[1][i].first);
+        EXPECT_TRUE(files[0][i].second == files[1][i].second)
+            << files[0][i].first << " differs";
+    }
 }
 
 

@@ -5,6 +5,7 @@
 #include "elementToParticle.H"
 #include "elementParticleCoupling.H"
 #include "timeStepControl.H"
+#include "parallelLoop.H"
 
 #include <cmath>
 #include <sstream>
@@ -689,55 +690,91 @@ bool Foam::spemMethod::advanceElements(const scalar dt)
     // n sub-steps of dt/n; if an evaluation finds the solids' stable step
     // fallen below the sub-step (an element being crushed: hyperelastic
     // solids stiffen and shrink), the rest of the step is split again at
-    // the new one, so that no sub-step outruns it
-    label n = lastSubSteps_;
+    // the new one, so that no sub-step outruns it. A solid partition above
+    // minParallelSolid elements takes its sub-steps in one parallel region:
+    // every thread runs this loop and shares the passes of evaluateSolids
+    // and advanceSolidSubStep; rank 0 checks the step and corrects the
+    // contacts. The shared n, j, subDt, splitAt and ok change only there,
+    // before a sync: every thread reads the same values after it.
+    label n = lastSubSteps_, j = 0;
     scalar subDt = dt/n, splitAt = 0;
-    label j = 0;
-    for (label k = 0; j < n; ++k, ++j)
+    bool ok = true;
+    threadTeam team;
+    #pragma omp parallel if(elements_->nSolidElements() > minParallelSolid)
+    for (label k = 0; ok && j < n; ++k)
     {
+        const bool master = team.rank() == 0;
         if (k > 0)
         {
             const scalar elapsed = splitAt + j*subDt;
-            if (!elements_->evaluateSolids(elapsed))
+            const bool evaluated = elements_->evaluateSolids(elapsed, team);
+            if (master)
             {
-                return fail(elements_->failure(), unstableHint);
+                ok =
+                    evaluated
+                  ? splitSubSteps(dt, elapsed, k, n, j, subDt, splitAt)
+                  : fail(elements_->failure(), unstableHint);
             }
-            const scalar solid = elements_->solidStableDeltaT();
-            if (subDt > subCycling_.maxCo()*solid*(1 + 1e-12))
+            team.sync();
+            if (!ok) break;
+        }
+        const bool advanced = elements_->advanceSolidSubStep
+        (
+            subDt, splitAt + j*subDt, dt, team
+        );
+        if (master)
+        {
+            if (!advanced)
             {
-                const label more = subCycling_.subSteps(dt - elapsed, solid);
-                if (more > subCycling_.maxSteps())
-                {
-                    std::ostringstream os;
-                    os  << "the solids' stable step fell to " << solid
-                        << " s within a sub-cycled step, set by ";
-                    describeElementLimit(os, elements_->solidStableLimit());
-                    os  << "; the step would take " << more << " more"
-                        << " sub-steps (maxSteps " << subCycling_.maxSteps()
-                        << "): an element is crushed";
-                    return fail
-                    (
-                        os.str(),
-                        "A material too soft for the load, or a blow-up in"
-                        " slow motion; check the solid near the failure."
-                    );
-                }
-                splitAt = elapsed;
-                subDt = (dt - elapsed)/more;
-                n = more;
-                j = 0;
-                lastSubSteps_ = k + more;
+                ok = fail(elements_->failure(), unstableHint);
             }
+            else if (!contact_->correctStructures(*elements_, dt, k == 0))
+            {
+                ok = fail(contact_->failure(), unstableHint);
+            }
+            ++j;
         }
-        if (!elements_->advanceSolidSubStep(subDt, splitAt + j*subDt, dt))
-        {
-            return fail(elements_->failure(), unstableHint);
-        }
-        if (!contact_->correctStructures(*elements_, dt, k == 0))
-        {
-            return fail(contact_->failure(), unstableHint);
-        }
+        team.sync();
     }
+    return ok;
+}
+
+
+bool Foam::spemMethod::splitSubSteps
+(
+    const scalar dt,
+    const scalar elapsed,
+    const label k,
+    label& n,
+    label& j,
+    scalar& subDt,
+    scalar& splitAt
+)
+{
+    const scalar solid = elements_->solidStableDeltaT();
+    if (subDt <= subCycling_.maxCo()*solid*(1 + 1e-12)) return true;
+    const label more = subCycling_.subSteps(dt - elapsed, solid);
+    if (more > subCycling_.maxSteps())
+    {
+        std::ostringstream os;
+        os  << "the solids' stable step fell to " << solid
+            << " s within a sub-cycled step, set by ";
+        describeElementLimit(os, elements_->solidStableLimit());
+        os  << "; the step would take " << more << " more"
+            << " sub-steps (maxSteps " << subCycling_.maxSteps()
+            << "): an element is crushed";
+        return fail
+        (
+            os.str(),
+            "A material too soft for the load, or a blow-up in"
+            " slow motion; check the solid near the failure."
+        );
+    }
+    splitAt = elapsed;
+    subDt = (dt - elapsed)/more;
+    n = more;
+    j = 0;
+    lastSubSteps_ = k + more;
     return true;
 }
 

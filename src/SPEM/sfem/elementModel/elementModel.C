@@ -390,7 +390,57 @@ void Foam::elementModel::buildReferenceGeometry()
 }
 
 
-bool Foam::elementModel::elementPass(const bool solidsOnly)
+inline bool Foam::elementModel::solidElementGradient
+(
+    const label el,
+    const spemMaterial& mat,
+    const bool fromState,
+    const scalar* x,
+    scalar& least
+)
+{
+    const scalar* X = X_.data();
+    const label* n = &elemNodes_[3*el];
+    scalar u[3][2];
+    for (label a = 0; a < 3; ++a)
+    {
+        u[a][0] = x[2*n[a]] - X[2*n[a]];
+        u[a][1] = x[2*n[a] + 1] - X[2*n[a] + 1];
+    }
+    // Reference A grad N: recomputing it is cheaper than streaming it from
+    // memory
+    scalar AgradN[6];
+    const scalar A0 = triangleAreaGradN
+    (
+        X + 2*n[0], X + 2*n[1], X + 2*n[2], AgradN
+    );
+    scalar* Ag = &elemAreaGrad_[4*el];
+    areaGradient(AgradN, u[0], u[1], u[2], Ag);
+    if (!fromState) return true;
+
+    // The element's F = I + grad u; its current area is J A0
+    const scalar invA0 = 1/A0;
+    const scalar F[4] =
+    {
+        1 + Ag[0]*invA0, Ag[1]*invA0, Ag[2]*invA0, 1 + Ag[3]*invA0
+    };
+    const scalar J = F[0]*F[3] - F[1]*F[2];
+    if (!(J > 0)) return false;
+    const scalar A = J*A0;
+    least = std::min
+    (
+        least,
+        A*A
+       /(
+            longestEdgeSqr(x + 2*n[0], x + 2*n[1], x + 2*n[2])
+           *mat.longitudinalModulus(F)
+        )
+    );
+    return true;
+}
+
+
+bool Foam::elementModel::elementPass()
 {
     const scalar* x = x_[cur_].data();
     const scalar* v = v_[cur_].data();
@@ -404,7 +454,6 @@ bool Foam::elementModel::elementPass(const bool solidsOnly)
     {
         if (!materials_.set(r)) continue;   // void: no elements
         const spemMaterial& mat = materials_[r];
-        if (solidsOnly && mat.isFluid()) continue;
         const label begin = regions_[r].elemBegin, end = regions_[r].elemEnd;
         // A fluid region may have become particles entirely
         if (begin == end) continue;
@@ -476,7 +525,6 @@ bool Foam::elementModel::elementPass(const bool solidsOnly)
         else
         {
             // Performance critical: every solid element, every step
-            const scalar* X = X_.data();
             // The stable step of a solid whose stiffness changes with the
             // state (hyperelastic: it stiffens in compression while its
             // elements shrink) is the current smallest altitude h over the
@@ -491,45 +539,7 @@ bool Foam::elementModel::elementPass(const bool solidsOnly)
             (
                 begin, end, minRatio, [&](const label el, scalar& least)
                 {
-                    const label* n = &elemNodes_[3*el];
-                    scalar u[3][2];
-                    for (label a = 0; a < 3; ++a)
-                    {
-                        u[a][0] = x[2*n[a]] - X[2*n[a]];
-                        u[a][1] = x[2*n[a] + 1] - X[2*n[a] + 1];
-                    }
-                    // Reference A grad N: recomputing it is cheaper than
-                    // streaming it from memory
-                    scalar AgradN[6];
-                    const scalar A0 = triangleAreaGradN
-                    (
-                        X + 2*n[0], X + 2*n[1], X + 2*n[2], AgradN
-                    );
-                    scalar* Ag = &elemAreaGrad_[4*el];
-                    areaGradient(AgradN, u[0], u[1], u[2], Ag);
-                    if (!fromState) return true;
-
-                    // The element's F = I + grad u; its current area is
-                    // J A0
-                    const scalar invA0 = 1/A0;
-                    const scalar F[4] =
-                    {
-                        1 + Ag[0]*invA0, Ag[1]*invA0, Ag[2]*invA0,
-                        1 + Ag[3]*invA0
-                    };
-                    const scalar J = F[0]*F[3] - F[1]*F[2];
-                    if (!(J > 0)) return false;
-                    const scalar A = J*A0;
-                    least = std::min
-                    (
-                        least,
-                        A*A
-                       /(
-                            longestEdgeSqr(x + 2*n[0], x + 2*n[1], x + 2*n[2])
-                           *mat.longitudinalModulus(F)
-                        )
-                    );
-                    return true;
+                    return solidElementGradient(el, mat, fromState, x, least);
                 }
             );
             if (fromState)
@@ -562,7 +572,6 @@ bool Foam::elementModel::elementPass(const bool solidsOnly)
     solidStableDeltaT_ =
         solidLimit.which == stepLimit::criterion::none
       ? GREAT : solidLimit.deltaT;
-    if (solidsOnly) return ok;
     stableDeltaT_ = timeScale;
     stableLimit_ = limit;
     fluidStableLimit_ = fluidLimit;
@@ -615,13 +624,12 @@ inline void Foam::elementModel::elementForce(const label el, const scalar* x)
 }
 
 
-bool Foam::elementModel::domainPass(const bool solidsOnly)
+bool Foam::elementModel::domainPass()
 {
     bool ok = true;
     for (label r = 0; r < regions_.size(); ++r)
     {
         if (!materials_.set(r)) continue;   // void: no elements
-        if (solidsOnly && materials_[r].isFluid()) continue;
         const label begin = regions_[r].domainBegin, end = regions_[r].domainEnd;
         const bool fluid = materials_[r].isFluid();
 
@@ -650,12 +658,11 @@ bool Foam::elementModel::domainPass(const bool solidsOnly)
 }
 
 
-void Foam::elementModel::forcePass(const bool solidsOnly)
+void Foam::elementModel::forcePass()
 {
     for (label r = 0; r < regions_.size(); ++r)
     {
         if (!materials_.set(r)) continue;   // void: no elements
-        if (solidsOnly && materials_[r].isFluid()) continue;
         // Current configuration for fluids, reference for solids
         const scalar* x =
             materials_[r].isFluid() ? x_[cur_].data() : X_.data();
@@ -695,7 +702,8 @@ Foam::elementModel::elementModel
     solidStableDeltaT_(GREAT),
     previousSubStep_{0, 0},
     load_(subCycleLoad::held),
-    haveFluidLoad_(false)
+    haveFluidLoad_(false),
+    nTeamSlots_(0)
 {
     if (!density.empty() && label(density.size()) != mesh.nTriangles())
     {
@@ -918,6 +926,12 @@ bool Foam::elementModel::advance(const scalar dt)
 
 bool Foam::elementModel::advanceFluidPartition(const scalar dt)
 {
+    // The sub-steps that follow may run in a team of this many threads
+#ifdef _OPENMP
+    reserveTeamSlots(omp_get_max_threads());
+#else
+    reserveTeamSlots(1);
+#endif
     const scalar* x = x_[cur_].data();
     const scalar* v = v_[cur_].data();
     scalar* xNew = x_[1 - cur_].data();
@@ -989,6 +1003,17 @@ bool Foam::elementModel::advanceFluidPartition(const scalar dt)
 }
 
 
+Foam::label Foam::elementModel::nSolidElements() const
+{
+    label n = 0;
+    for (label r = 0; r < regions_.size(); ++r)
+    {
+        if (isSolidRegion(r)) n += regions_[r].elemEnd - regions_[r].elemBegin;
+    }
+    return n;
+}
+
+
 void Foam::elementModel::setFluidLoad(const std::vector<scalar>& load)
 {
     if (load.empty())
@@ -1009,19 +1034,211 @@ void Foam::elementModel::setFluidLoad(const std::vector<scalar>& load)
 
 bool Foam::elementModel::evaluateSolids(const scalar elapsed)
 {
-    failure_.clear();
-    if (!elementPass(true)) return false;
-    if (!domainPass(true)) return false;
-    forcePass(true);
-    if (load_ == subCycleLoad::interpolated)
+    if (inTeam())
     {
-        return evaluateInterfaceElements(elapsed);
+        FatalErrorInFunction
+            << "evaluateSolids without a threadTeam inside a parallel region"
+            << exit(FatalError);
     }
-    return true;
+    threadTeam one;
+    return evaluateSolids(elapsed, one);
 }
 
 
-bool Foam::elementModel::evaluateInterfaceElements(const scalar elapsed)
+bool Foam::elementModel::evaluateSolids
+(
+    const scalar elapsed,
+    threadTeam& team
+)
+{
+    // Every thread of the team runs this, each over its threadBlock of
+    // every pass, with team.sync() between the passes; rank 0 sums up.
+    // Each item is computed alike and the passes follow the order of one
+    // thread's: the same results, and the same failure, on any number of
+    // threads. Each thread writes its own slots of the flags.
+    const label nReg = regions_.size();
+    const label t = team.rank(), nT = team.size();
+    checkTeamSlots(nT);
+    const bool interpolated = load_ == subCycleLoad::interpolated;
+    const scalar* x = x_[cur_].data();
+    // The flags of every thread for the solid regions, after a sync
+    const auto allOk = [&](const std::vector<char>& flags)
+    {
+        for (label i = 0; i < nT; ++i)
+        {
+            for (label r = 0; r < nReg; ++r)
+            {
+                if (isSolidRegion(r) && !flags[i*nReg + r]) return false;
+            }
+        }
+        return true;
+    };
+
+    // The solid elements' A_e grad u, and the least (h/c)^2 of those whose
+    // stiffness follows the state; interpolated: the interface nodes at
+    // elapsed
+    for (label r = 0; r < nReg; ++r)
+    {
+        if (!isSolidRegion(r)) continue;
+        const spemMaterial& mat = materials_[r];
+        const bool fromState = !mat.isGeometricallyLinear();
+        label b, e;
+        threadBlock(regions_[r].elemBegin, regions_[r].elemEnd, b, e);
+        scalar least = std::numeric_limits<scalar>::max();
+        bool ok = true;
+        for (label el = b; el < e; ++el)
+        {
+            ok = solidElementGradient(el, mat, fromState, x, least) && ok;
+        }
+        teamLeast_[t*nReg + r] = least;
+        teamElemOk_[t*nReg + r] = ok;
+    }
+    if (interpolated) interfaceNodeState(elapsed);
+    team.sync();
+    bool ok = allOk(teamElemOk_);
+
+    // Their domains: smoothed gradients and stresses
+    if (ok)
+    {
+        for (label r = 0; r < nReg; ++r)
+        {
+            if (!isSolidRegion(r)) continue;
+            label b, e;
+            threadBlock(regions_[r].domainBegin, regions_[r].domainEnd, b, e);
+            for (label k = b; k < e; ++k) smoothDomainGradient(k);
+            teamDomainOk_[t*nReg + r] =
+                b == e
+             || materials_[r].stress
+                (
+                    b, e, domainGrad_.data(), domainArea_.data(),
+                    domainMass_.data(), domainStress_.data()
+                );
+        }
+        team.sync();
+        ok = allOk(teamDomainOk_);
+    }
+
+    // The solid elements' forces (on the reference configuration, eq. 5);
+    // interpolated: the geometry of the fluid elements next to them
+    if (ok)
+    {
+        for (label r = 0; r < nReg; ++r)
+        {
+            if (!isSolidRegion(r)) continue;
+            label b, e;
+            threadBlock(regions_[r].elemBegin, regions_[r].elemEnd, b, e);
+            for (label el = b; el < e; ++el) elementForce(el, X_.data());
+        }
+        teamInterfaceOk_[t] = !interpolated || interfaceElementGradients();
+        team.sync();
+        for (label i = 0; i < nT; ++i) ok = ok && teamInterfaceOk_[i];
+    }
+
+    // interpolated: the fluid domains and forces next to the solids
+    if (ok && interpolated)
+    {
+        interfaceDomainStresses();
+        team.sync();
+        interfaceForces();
+    }
+
+    if (t == 0)
+    {
+        // The solids' own stable step, also within a sub-cycled step (a
+        // crushed element's step falls within one)
+        stepLimit solidLimit = solidLimit_;
+        for (label r = 0; r < nReg; ++r)
+        {
+            if
+            (
+                !isSolidRegion(r)
+             || regions_[r].elemBegin == regions_[r].elemEnd
+             || materials_[r].isGeometricallyLinear()
+            )
+            {
+                continue;
+            }
+            scalar least = std::numeric_limits<scalar>::max();
+            for (label i = 0; i < nT; ++i)
+            {
+                least = std::min(least, teamLeast_[i*nReg + r]);
+            }
+            solidLimit.keepSmaller
+            (
+                stepLimit::criterion::solidWave,
+                std::sqrt(4*materials_[r].rho()*least), r, 0
+            );
+        }
+        solidStableLimit_ = solidLimit;
+        solidStableDeltaT_ =
+            solidLimit.which == stepLimit::criterion::none
+          ? GREAT : solidLimit.deltaT;
+        // The failure of the first pass that failed (only its flags are
+        // of this call), its last region
+        failure_.clear();
+        for (label i = 0; i < nT; ++i)
+        {
+            for (label r = 0; r < nReg; ++r)
+            {
+                if (isSolidRegion(r) && !teamElemOk_[i*nReg + r])
+                {
+                    failure_ = "an element of solid region "
+                      + regions_[r].name + " is inverted (det F <= 0)";
+                }
+            }
+        }
+        for (label i = 0; failure_.empty() && !ok && i < nT; ++i)
+        {
+            for (label r = 0; r < nReg; ++r)
+            {
+                if (isSolidRegion(r) && !teamDomainOk_[i*nReg + r])
+                {
+                    failure_ = "a smoothing domain of solid region "
+                      + regions_[r].name + " is inverted (det F <= 0)";
+                }
+            }
+        }
+        if (failure_.empty() && !ok)
+        {
+            failure_ =
+                "a fluid element next to a solid is inverted or degenerate"
+                " (zero or negative area) inside a sub-cycled step";
+        }
+    }
+    team.sync();
+    return ok;
+}
+
+
+void Foam::elementModel::reserveTeamSlots(const label nThreads)
+{
+    const label nReg = regions_.size();
+    if (nTeamSlots_ >= nThreads && label(teamLeast_.size()) == nTeamSlots_*nReg)
+    {
+        return;
+    }
+    nTeamSlots_ = max(nThreads, label(1));
+    teamLeast_.assign(nTeamSlots_*nReg, 0);
+    teamElemOk_.assign(nTeamSlots_*nReg, 1);
+    teamDomainOk_.assign(nTeamSlots_*nReg, 1);
+    teamInterfaceOk_.assign(nTeamSlots_, 1);
+    teamFinite_.assign(nTeamSlots_, 1);
+}
+
+
+void Foam::elementModel::checkTeamSlots(const label nThreads) const
+{
+    if (nThreads > nTeamSlots_)
+    {
+        FatalErrorInFunction
+            << "A team of " << nThreads << " threads for the sub-steps, slots"
+            << " for " << nTeamSlots_ << " (advanceFluidPartition reserves"
+            << " them for omp_get_max_threads())" << exit(FatalError);
+    }
+}
+
+
+void Foam::elementModel::interfaceNodeState(const scalar elapsed)
 {
     // After advanceFluidPartition: the other buffer holds x^n, the
     // current one the fluid nodes' v^{n+1/2} and the solid nodes' state
@@ -1030,8 +1247,11 @@ bool Foam::elementModel::evaluateInterfaceElements(const scalar elapsed)
     const scalar* v = v_[cur_].data();
     scalar* xs = subX_.data();
     scalar* vs = subV_.data();
-    for (const label n : interfaceNodes_)
+    label b, e;
+    threadBlock(0, label(interfaceNodes_.size()), b, e);
+    for (label i = b; i < e; ++i)
     {
+        const label n = interfaceNodes_[i];
         for (label c = 0; c < 2; ++c)
         {
             xs[2*n + c] =
@@ -1039,10 +1259,20 @@ bool Foam::elementModel::evaluateInterfaceElements(const scalar elapsed)
             vs[2*n + c] = v[2*n + c];
         }
     }
-    // The elements of the domains: current area and A_e grad v
+}
+
+
+bool Foam::elementModel::interfaceElementGradients()
+{
+    // The elements of the interface domains: current area and A_e grad v
+    const scalar* xs = subX_.data();
+    const scalar* vs = subV_.data();
+    label b, e;
+    threadBlock(0, label(interfaceDomainElems_.size()), b, e);
     bool ok = true;
-    for (const label el : interfaceDomainElems_)
+    for (label i = b; i < e; ++i)
     {
+        const label el = interfaceDomainElems_[i];
         const label* n = &elemNodes_[3*el];
         scalar AgradN[6];
         const scalar A = triangleAreaGradN
@@ -1056,15 +1286,16 @@ bool Foam::elementModel::evaluateInterfaceElements(const scalar elapsed)
             AgradN, vs + 2*n[0], vs + 2*n[1], vs + 2*n[2], &elemAreaGrad_[4*el]
         );
     }
-    if (!ok)
-    {
-        failure_ =
-            "a fluid element next to a solid is inverted or degenerate (zero"
-            " or negative area) inside a sub-cycled step";
-        return false;
-    }
-    // Their domains: smoothed gradient, area and stress (eq. 2)
-    for (size_t i = 0; i < interfaceDomains_.size(); ++i)
+    return ok;
+}
+
+
+void Foam::elementModel::interfaceDomainStresses()
+{
+    // Smoothed gradient, area and stress (eq. 2)
+    label b, e;
+    threadBlock(0, label(interfaceDomains_.size()), b, e);
+    for (label i = b; i < e; ++i)
     {
         const label k = interfaceDomains_[i];
         domainArea_[k] = smoothDomainGradient(k)/3;
@@ -1074,9 +1305,15 @@ bool Foam::elementModel::evaluateInterfaceElements(const scalar elapsed)
             domainMass_.data(), domainStress_.data()
         );
     }
-    // The forces of the elements with a solid node (eq. 5)
-    for (const label el : interfaceElems_) elementForce(el, xs);
-    return true;
+}
+
+
+void Foam::elementModel::interfaceForces()
+{
+    // The forces of the fluid elements with a solid node (eq. 5)
+    label b, e;
+    threadBlock(0, label(interfaceElems_.size()), b, e);
+    for (label i = b; i < e; ++i) elementForce(interfaceElems_[i], subX_.data());
 }
 
 
@@ -1085,6 +1322,25 @@ bool Foam::elementModel::advanceSolidSubStep
     const scalar subDt,
     const scalar elapsed,
     const scalar dt
+)
+{
+    if (inTeam())
+    {
+        FatalErrorInFunction
+            << "advanceSolidSubStep without a threadTeam inside a parallel"
+            << " region" << exit(FatalError);
+    }
+    threadTeam one;
+    return advanceSolidSubStep(subDt, elapsed, dt, one);
+}
+
+
+bool Foam::elementModel::advanceSolidSubStep
+(
+    const scalar subDt,
+    const scalar elapsed,
+    const scalar dt,
+    threadTeam& team
 )
 {
     const bool first = elapsed == 0;
@@ -1102,8 +1358,11 @@ bool Foam::elementModel::advanceSolidSubStep
     const scalar weight = subDt/dt;
     const label nSolid = label(solidNodes_.size());
 
-    // Performance critical: every solid node, every sub-step
-    const bool finite = parallelAll(0, nSolid, [&](const label i)
+    // Performance critical: every solid node, every sub-step. Run by every
+    // thread of the team over its threadBlock (evaluateSolids)
+    const label t = team.rank(), nT = team.size();
+    checkTeamSlots(nT);
+    const auto subStep = [&](const label i)
     {
         const label n = solidNodes_[i];
         scalar r[2] = {0, 0};
@@ -1125,14 +1384,21 @@ bool Foam::elementModel::advanceSolidSubStep
         reaction[0] = (first ? 0 : reaction[0]) + weight*r[0];
         reaction[1] = (first ? 0 : reaction[1]) + weight*r[1];
         return ok;
-    });
-    previousSubStep_[cur_] = subDt;
-    if (!finite)
+    };
+    label b, e;
+    threadBlock(0, nSolid, b, e);
+    bool finite = true;
+    for (label i = b; i < e; ++i) finite = subStep(i) && finite;
+    teamFinite_[t] = finite;
+    team.sync();
+    for (label i = 0; i < nT; ++i) finite = finite && teamFinite_[i];
+    if (t == 0)
     {
-        failure_ = "a node velocity is not finite";
-        return false;
+        previousSubStep_[cur_] = subDt;
+        if (!finite) failure_ = "a node velocity is not finite";
     }
-    return true;
+    team.sync();
+    return finite;
 }
 
 
