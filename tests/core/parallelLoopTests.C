@@ -9,7 +9,9 @@ Description
     contiguous blocks in thread order that cover it once, for any team
     size; a threadTeam's sync() makes what each thread wrote before it
     visible to all after it, over many passes in a row; a helper loop
-    inside a team opens no region of its own.
+    inside a team opens no region of its own; teamOrOne tries one thread
+    and the team, then runs the faster, tries the other every trialEvery
+    calls and follows a change of the machine.
 
 \*---------------------------------------------------------------------------*/
 
@@ -197,6 +199,50 @@ TEST(ParallelLoop, helpersInsideATeamOpenNoRegionOfTheirOwn)
     }
     EXPECT_EQ(teams, 2);
     EXPECT_EQ(nested, 0);
+}
+
+TEST(ParallelLoop, teamOrOneRunsTheFasterAndTriesTheOtherNowAndThen)
+{
+    teamOrOne choice;
+    // Each mode tried first: one thread, then the team
+    EXPECT_FALSE(choice.chooseTeam());
+    choice.record(2e-3, 100);           // 20 us an item
+    EXPECT_TRUE(choice.chooseTeam());
+    choice.record(1e-3, 100);           // 10 us an item
+    EXPECT_DOUBLE_EQ(choice.cost(false), 2e-5);
+    EXPECT_DOUBLE_EQ(choice.cost(true), 1e-5);
+    // The team from now on, but for one trial of one thread per
+    // trialEvery calls
+    label teamCalls = 0, oneCalls = 0;
+    for (label call = 0; call < 4*teamOrOne::trialEvery; ++call)
+    {
+        const bool team = choice.chooseTeam();
+        (team ? teamCalls : oneCalls) += 1;
+        choice.record(team ? 1e-3 : 2e-3, 100);
+    }
+    EXPECT_EQ(oneCalls, 4);
+    EXPECT_EQ(teamCalls, 4*teamOrOne::trialEvery - 4);
+    // The machine changes: the team becomes slower than one thread. The
+    // team's mean follows its calls; once it is above one thread's, one
+    // thread runs, and the team's trials keep finding it slow
+    label callsToSwitch = 0;
+    while (choice.chooseTeam())
+    {
+        choice.record(4e-3, 100);
+        ASSERT_LT(++callsToSwitch, 20) << "never left the slow team";
+    }
+    choice.record(2e-3, 100);
+    EXPECT_GT(choice.cost(true), choice.cost(false));
+    // 10 -> 17.5 -> 23.1 us a sub-step: above one thread's 20 after two
+    EXPECT_EQ(callsToSwitch, 2);
+    label teamTrials = 0;
+    for (label call = 0; call < 2*teamOrOne::trialEvery; ++call)
+    {
+        const bool team = choice.chooseTeam();
+        teamTrials += team;
+        choice.record(team ? 4e-3 : 2e-3, 100);
+    }
+    EXPECT_EQ(teamTrials, 2);
 }
 
 // ************************************************************************* //

@@ -4850,13 +4850,14 @@ TEST_F(SolverSubCycling, plateSubCyclesAndTheLogSaysWhy)
 
 TEST_F(SolverSubCycling, aPlateAboveMinParallelSolidSubStepsAlikeOnTwoThreads)
 {
-    // A plate of 2 x 510 elements: its sub-steps run in one parallel
-    // region whose threads share each pass (spemMethod::advanceElements,
-    // minParallelSolid); on one thread, without. The written state must
-    // be the same to the bit, the interpolated load's passes over the
-    // fluid elements next to the plate included
-    // 130 x 4 cells: 1040 elements of aspect ratio 3.2; the water's
-    // elongated cells stay elements (no conversion)
+    // A plate above minParallelSolid elements: on two threads its
+    // sub-steps run one fluid step on one thread, the next in one parallel
+    // region whose threads share each pass, then whichever was faster
+    // (spemMethod::advanceElements, teamOrOne); on one thread, never in a
+    // team. The written state must be the same to the bit, the
+    // interpolated load's passes over the fluid elements next to the
+    // plate included. 130 x 4 cells: 1040 elements of aspect ratio 3.2;
+    // the water's elongated cells stay elements (no conversion)
     addPlate();
     nx_ = 130;
     ny_ = 8;
@@ -4875,6 +4876,9 @@ TEST_F(SolverSubCycling, aPlateAboveMinParallelSolidSubStepsAlikeOnTwoThreads)
         const std::string text = runExpectingSuccess();
         if (HasFailure()) return;
         EXPECT_GT(lastSubSteps(text), 1) << text;
+        // Two threads report which runs the sub-steps and why
+        EXPECT_EQ(contains(text, "us a sub-step, on one"), threads == 2)
+            << text;
         files[threads - 1] = writtenFiles(caseDir_);
     }
     ASSERT_EQ(files[0].size(), files[1].size());

@@ -7,6 +7,7 @@
 #include "timeStepControl.H"
 #include "parallelLoop.H"
 
+#include <chrono>
 #include <cmath>
 #include <sstream>
 
@@ -690,17 +691,22 @@ bool Foam::spemMethod::advanceElements(const scalar dt)
     // n sub-steps of dt/n; if an evaluation finds the solids' stable step
     // fallen below the sub-step (an element being crushed: hyperelastic
     // solids stiffen and shrink), the rest of the step is split again at
-    // the new one, so that no sub-step outruns it. A solid partition above
-    // minParallelSolid elements takes its sub-steps in one parallel region:
-    // every thread runs this loop and shares the passes of evaluateSolids
-    // and advanceSolidSubStep; rank 0 checks the step and corrects the
-    // contacts. The shared n, j, subDt, splitAt and ok change only there,
-    // before a sync: every thread reads the same values after it.
+    // the new one, so that no sub-step outruns it. Above minParallelSolid
+    // solid elements the sub-steps may run in one parallel region, if
+    // that is faster here (solidTeam_): every thread runs this loop and
+    // shares the passes of evaluateSolids and advanceSolidSubStep; rank 0
+    // checks the step and corrects the contacts. The shared n, j, subDt,
+    // splitAt and ok change only there, before a sync: every thread reads
+    // the same values after it. The result is the same either way.
+    const bool canTeam =
+        maxThreads() > 1 && elements_->nSolidElements() > minParallelSolid;
+    const bool teamed = canTeam && solidTeam_.chooseTeam();
+    const auto start = std::chrono::steady_clock::now();
     label n = lastSubSteps_, j = 0;
     scalar subDt = dt/n, splitAt = 0;
     bool ok = true;
     threadTeam team;
-    #pragma omp parallel if(elements_->nSolidElements() > minParallelSolid)
+    #pragma omp parallel if(teamed)
     for (label k = 0; ok && j < n; ++k)
     {
         const bool master = team.rank() == 0;
@@ -735,6 +741,17 @@ bool Foam::spemMethod::advanceElements(const scalar dt)
             ++j;
         }
         team.sync();
+    }
+    if (canTeam)
+    {
+        solidTeam_.record
+        (
+            std::chrono::duration<scalar>
+            (
+                std::chrono::steady_clock::now() - start
+            ).count(),
+            lastSubSteps_
+        );
     }
     return ok;
 }
@@ -1197,6 +1214,15 @@ void Foam::spemMethod::report(Ostream& os) const
     if (lastSubSteps_ > 1)
     {
         os  << ", solid sub-steps = " << lastSubSteps_;
+        const scalar team = solidTeam_.cost(true), one = solidTeam_.cost(false);
+        if (team >= 0 && one >= 0)
+        {
+            // Which of the two runs them now, by its mean time a sub-step
+            const auto us = [](const scalar c) { return std::round(1e7*c)/10; };
+            os  << " (" << (team < one ? "on " : "not on ") << maxThreads()
+                << " threads: " << us(team) << " us a sub-step, on one "
+                << us(one) << " us)";
+        }
     }
     if (structureCoupling_)
     {
