@@ -24,7 +24,9 @@ Description
         Courant number 0.5; at 0.8 the jumps of the sub-step pump 23 % into
         it;
       - a scene without a solid has no solid partition and never
-        sub-cycles; n = ceil(dt/(maxCo dt_s)) lands on the fluid step.
+        sub-cycles; n = ceil(dt/(maxCo dt_s)) lands on the fluid step;
+      - an inverted solid element fails a sub-step's evaluation with the
+        same message on one thread and in a team of two.
 
 \*---------------------------------------------------------------------------*/
 
@@ -541,6 +543,40 @@ TEST(SolidSubCycling, noSolidNoSubCycling)
     EXPECT_EQ(on.subSteps(1e-6, 1e-4), 1);
 }
 
+
+TEST(SolidSubCycling, anInvertedSolidElementFailsTheSubStepAlikeInATeam)
+{
+    // A corner node pushed across its elements between two sub-steps: the
+    // evaluation fails with the same message on one thread and in a team
+    // of two sharing its passes, and every thread of the team returns false
+    const triMesh mesh = testMeshes::build({{0, 1, 0, 1, 8, 8, "block"}});
+    auto em = testModels::model
+    (
+        mesh, {{"block", "model neoHookean; rho 1000; E 2e6; nu 0.3;"}}
+    );
+    ASSERT_TRUE(em->evaluate()) << em->failure();
+    ASSERT_TRUE(em->advanceFluidPartition(1e-6)) << em->failure();
+    em->setPosition(0, 0.8, 0.8);
+
+    EXPECT_FALSE(em->evaluateSolids(1e-7));
+    const std::string alone = em->failure();
+    EXPECT_NE
+    (
+        alone.find("an element of solid region block is inverted"),
+        std::string::npos
+    ) << alone;
+
+    int returnedTrue = 0, threads = 0;
+    threadTeam team;
+    #pragma omp parallel num_threads(2) reduction(+: returnedTrue, threads)
+    {
+        returnedTrue += em->evaluateSolids(1e-7, team);
+        threads += 1;
+    }
+    EXPECT_EQ(threads, 2);
+    EXPECT_EQ(returnedTrue, 0);
+    EXPECT_EQ(em->failure(), alone);
+}
 
 // ************************************************************************* //
 

@@ -722,6 +722,7 @@ Foam::elementModel::elementModel
     }
     externalForce_.assign(2*nNodes_, 0);
     build(mesh);
+    reserveTeamSlots(maxThreads());
 }
 
 
@@ -927,11 +928,7 @@ bool Foam::elementModel::advance(const scalar dt)
 bool Foam::elementModel::advanceFluidPartition(const scalar dt)
 {
     // The sub-steps that follow may run in a team of this many threads
-#ifdef _OPENMP
-    reserveTeamSlots(omp_get_max_threads());
-#else
-    reserveTeamSlots(1);
-#endif
+    reserveTeamSlots(maxThreads());
     const scalar* x = x_[cur_].data();
     const scalar* v = v_[cur_].data();
     scalar* xNew = x_[1 - cur_].data();
@@ -1175,27 +1172,30 @@ bool Foam::elementModel::evaluateSolids
           ? GREAT : solidLimit.deltaT;
         // The failure of the first pass that failed (only its flags are
         // of this call), its last region
-        failure_.clear();
-        for (label i = 0; i < nT; ++i)
+        const auto anyThread = [&](const std::vector<char>& flags, label r)
         {
-            for (label r = 0; r < nReg; ++r)
+            for (label i = 0; i < nT; ++i)
             {
-                if (isSolidRegion(r) && !teamElemOk_[i*nReg + r])
-                {
-                    failure_ = "an element of solid region "
-                      + regions_[r].name + " is inverted (det F <= 0)";
-                }
+                if (!flags[i*nReg + r]) return true;
+            }
+            return false;
+        };
+        failure_.clear();
+        for (label r = 0; r < nReg; ++r)
+        {
+            if (isSolidRegion(r) && anyThread(teamElemOk_, r))
+            {
+                failure_ = "an element of solid region "
+                  + regions_[r].name + " is inverted (det F <= 0)";
             }
         }
-        for (label i = 0; failure_.empty() && !ok && i < nT; ++i)
+        const bool elementsOk = failure_.empty();
+        for (label r = 0; elementsOk && !ok && r < nReg; ++r)
         {
-            for (label r = 0; r < nReg; ++r)
+            if (isSolidRegion(r) && anyThread(teamDomainOk_, r))
             {
-                if (isSolidRegion(r) && !teamDomainOk_[i*nReg + r])
-                {
-                    failure_ = "a smoothing domain of solid region "
-                      + regions_[r].name + " is inverted (det F <= 0)";
-                }
+                failure_ = "a smoothing domain of solid region "
+                  + regions_[r].name + " is inverted (det F <= 0)";
             }
         }
         if (failure_.empty() && !ok)
