@@ -1214,14 +1214,15 @@ void Foam::spemMethod::report(Ostream& os) const
     if (lastSubSteps_ > 1)
     {
         os  << ", solid sub-steps = " << lastSubSteps_;
-        const scalar team = solidTeam_.cost(true), one = solidTeam_.cost(false);
+        const scalar team = solidTeam_.cost(true);
+        const scalar one = solidTeam_.cost(false);
         if (team >= 0 && one >= 0)
         {
             // Which of the two runs them now, by its mean time a sub-step
             const auto us = [](const scalar c) { return std::round(1e7*c)/10; };
-            os  << " (" << (team < one ? "on " : "not on ") << maxThreads()
-                << " threads: " << us(team) << " us a sub-step, on one "
-                << us(one) << " us)";
+            os  << " (" << (solidTeam_.teamFaster() ? "on " : "not on ")
+                << maxThreads() << " threads: " << us(team)
+                << " us a sub-step, on one " << us(one) << " us)";
         }
     }
     if (structureCoupling_)

@@ -1058,15 +1058,21 @@ bool Foam::elementModel::evaluateSolids
     checkTeamSlots(nT);
     const bool interpolated = load_ == subCycleLoad::interpolated;
     const scalar* x = x_[cur_].data();
-    // The flags of every thread for the solid regions, after a sync
-    const auto allOk = [&](const std::vector<char>& flags)
+    // Whether a thread cleared its flag of region r, and whether none did
+    // for any solid region (after a sync)
+    const auto anyThread = [&](const std::vector<char>& flags, const label r)
     {
         for (label i = 0; i < nT; ++i)
         {
-            for (label r = 0; r < nReg; ++r)
-            {
-                if (isSolidRegion(r) && !flags[i*nReg + r]) return false;
-            }
+            if (!flags[i*nReg + r]) return true;
+        }
+        return false;
+    };
+    const auto allOk = [&](const std::vector<char>& flags)
+    {
+        for (label r = 0; r < nReg; ++r)
+        {
+            if (isSolidRegion(r) && anyThread(flags, r)) return false;
         }
         return true;
     };
@@ -1172,14 +1178,6 @@ bool Foam::elementModel::evaluateSolids
           ? GREAT : solidLimit.deltaT;
         // The failure of the first pass that failed (only its flags are
         // of this call), its last region
-        const auto anyThread = [&](const std::vector<char>& flags, label r)
-        {
-            for (label i = 0; i < nT; ++i)
-            {
-                if (!flags[i*nReg + r]) return true;
-            }
-            return false;
-        };
         failure_.clear();
         for (label r = 0; r < nReg; ++r)
         {
@@ -1313,7 +1311,8 @@ void Foam::elementModel::interfaceForces()
     // The forces of the fluid elements with a solid node (eq. 5)
     label b, e;
     threadBlock(0, label(interfaceElems_.size()), b, e);
-    for (label i = b; i < e; ++i) elementForce(interfaceElems_[i], subX_.data());
+    const scalar* xs = subX_.data();
+    for (label i = b; i < e; ++i) elementForce(interfaceElems_[i], xs);
 }
 
 
