@@ -521,6 +521,62 @@ TEST(ParticleNeighbourSearch, finerParticlesScanCellsOfTheirOwnSize)
 }
 
 
+TEST(ParticleNeighbourSearch, anUnmarkedBlockMeansNoMarkedNeighbour)
+{
+    // Mixed smoothing lengths (several levels) and the cells of some
+    // particles marked (those of one kind and of the finest level in the
+    // dense cluster, as refined fluid among coarser walls): a particle
+    // whose blocks hold no marked cell has no marked particle among its
+    // neighbours (sphFluid::wallPass skips its search on that), also when
+    // the marked ones are of another level, and the answer is not always
+    // "marked"
+    const particleSet ps = randomParticles(2000, 29);
+    const label n = ps.size();
+    cellLinkedList cells;
+    cells.update(ps, kappa*ps.maxSmoothingLength());
+    const label finest = cells.nLevels() - 1;
+    ASSERT_GT(finest, 0);
+
+    const std::vector<scalar>& x = ps.positions();
+    std::vector<bool> marked(n, false);
+    std::vector<unsigned char> mark(cells.nCells(), 0);
+    for (label j = 0; j < n; ++j)
+    {
+        marked[j] =
+            ps.kinds()[j] == particleSet::kind(0)
+         && cells.levelOfParticle(j) == finest
+         && x[2*j] > 0.3 && x[2*j] < 0.45 && x[2*j + 1] > 0.2
+         && x[2*j + 1] < 0.3;
+        if (marked[j]) mark[cells.cellOfParticle(j)] = 1;
+    }
+
+    const std::vector<std::vector<label>> exact = bruteForce(ps, kappa);
+    label nUnmarked = 0, nWithMarkedNeighbour = 0, nOtherLevel = 0;
+    for (label i = 0; i < n; ++i)
+    {
+        bool markedNeighbour = false;
+        for (const label j : exact[i]) markedNeighbour |= marked[j];
+        const bool around =
+            cells.anyMarkedCellAround(ps, i, kappa, mark.data());
+        if (markedNeighbour)
+        {
+            ++nWithMarkedNeighbour;
+            nOtherLevel += cells.levelOfParticle(i) != finest;
+            ASSERT_TRUE(around) << "particle " << i;
+        }
+        nUnmarked += !around;
+    }
+    std::printf
+    (
+        "%d particles, %d levels: %d with a marked neighbour (%d of them on"
+        " a coarser level), %d with no marked cell around\n",
+        n, finest + 1, nWithMarkedNeighbour, nOtherLevel, nUnmarked
+    );
+    EXPECT_GT(nOtherLevel, 0);
+    EXPECT_GT(nUnmarked, n/4);
+}
+
+
 TEST(ParticleNeighbourSearch, resultsIndependentOfThreadCount)
 {
     threadCountGuard guard;

@@ -843,6 +843,16 @@ void Foam::sphFluid::wallPass(const Kernel&)
     const bool structureSuction = controls_.structureSuction;
     const bool ghosts = nGhost_ > 0;
 
+    // The cells that hold the fluid (particles and ghosts): most walls of
+    // a tank whose water is mostly elements have none in reach, and skip
+    // the search (the branch below without fluid, the same values)
+    fluidCells_.assign(cells_.nCells(), 0);
+    for (const std::vector<label>* index : {&fluidIndex_, &ghostIndex_})
+    {
+        for (const label i : *index) fluidCells_[cells_.cellOfParticle(i)] = 1;
+    }
+    const unsigned char* fluidCells = fluidCells_.data();
+
     const label nWalls = label(wallIndex_.size());
     const label* __restrict__ walls = wallIndex_.data();
     #pragma omp parallel for schedule(static, passChunk) if(nWalls > minParallelParticles)
@@ -859,34 +869,43 @@ void Foam::sphFluid::wallPass(const Kernel&)
 
         scalar sumW = 0, sumP = 0, sumRhoX = 0, sumRhoY = 0, sumU = 0, sumV = 0;
         scalar sumGhostW = 0;
-        cells_.forEachNeighbour
-        (
-            particles_, w, kappa,
-            [&](const label f, const scalar dx, const scalar dy, const scalar r)
-            {
-                // The fluid: particles and the elements' ghosts
-                if
+        if (cells_.anyMarkedCellAround(particles_, w, kappa, fluidCells))
+        {
+            cells_.forEachNeighbour
+            (
+                particles_, w, kappa,
+                [&]
                 (
-                    kind[f] != particleSet::kind::fluid
-                 && kind[f] != particleSet::kind::ghost
+                    const label f,
+                    const scalar dx,
+                    const scalar dy,
+                    const scalar r
                 )
                 {
-                    return;
+                    // The fluid: particles and the elements' ghosts
+                    if
+                    (
+                        kind[f] != particleSet::kind::fluid
+                     && kind[f] != particleSet::kind::ghost
+                    )
+                    {
+                        return;
+                    }
+                    const scalar W = Kernel::W(r, 0.5*(h[w] + h[f]));
+                    sumW += W;
+                    sumP += p[f]*W;
+                    // rho_f (x_w - x_f) W
+                    sumRhoX += rho[f]*dx*W;
+                    sumRhoY += rho[f]*dy*W;
+                    sumU += v[2*f]*W;
+                    sumV += v[2*f + 1]*W;
+                    if (ghosts && kind[f] == particleSet::kind::ghost)
+                    {
+                        sumGhostW += W;
+                    }
                 }
-                const scalar W = Kernel::W(r, 0.5*(h[w] + h[f]));
-                sumW += W;
-                sumP += p[f]*W;
-                // rho_f (x_w - x_f) W
-                sumRhoX += rho[f]*dx*W;
-                sumRhoY += rho[f]*dy*W;
-                sumU += v[2*f]*W;
-                sumV += v[2*f + 1]*W;
-                if (ghosts && kind[f] == particleSet::kind::ghost)
-                {
-                    sumGhostW += W;
-                }
-            }
-        );
+            );
+        }
 
         // A wall at rest whose pressure the elements make in part: their
         // share of its kernel sum, and the sum
@@ -1733,7 +1752,8 @@ std::size_t Foam::sphFluid::memoryBytes() const
       + bytes(acceleration_) + bytes(correction_) + bytes(gradC_)
       + bytes(divR_) + bytes(oldPosition_) + bytes(oldVelocity_)
       + bytes(oldDensity_) + bytes(pairCount_) + bytes(pairNeighbour_)
-      + bytes(pairF_) + bytes(volume_) + bytes(pOverRho2_);
+      + bytes(pairF_) + bytes(volume_) + bytes(pOverRho2_)
+      + bytes(fluidCells_);
 }
 
 
