@@ -64,6 +64,7 @@ Description
 #include "spemModel.H"
 #include "elementModel.H"
 #include "sphFluid.H"
+#include "multiResolutionSPEM.H"
 #include "testMeshes.H"
 
 #include "testFiles.H"
@@ -84,6 +85,7 @@ Description
 #include <regex>
 #include <sstream>
 #include <string>
+#include <tuple>
 #include <utility>
 #include <vector>
 
@@ -1244,6 +1246,73 @@ TEST_F(Solver, refinedRadiusRatioOutsideThePapersRangeOrWithSPEMStops)
         {
             "FATAL IO ERROR", "refinedRadiusRatio", "multiResolutionSPEM",
             "system/spemSchemes"
+        }
+    );
+}
+
+
+TEST_F(Solver, multiResolutionWarnsAboveTheQuietCourantNumberOfItsPhi)
+{
+    // The interface of refined particles oscillates from a Courant number
+    // that grows with phi of eq. (26) (measured, multiResolutionSPEM.H):
+    // 0.7 at the paper's 0.1, 1.2 at 0.5, linear between the measured
+    // points; the warning comes above 1.5 times below it and names both
+    // remedies
+    using Foam::spemMethods::multiResolutionSPEM;
+    EXPECT_NEAR(multiResolutionSPEM::oscillationCo(0.1), 0.7, 1e-12);
+    EXPECT_NEAR(multiResolutionSPEM::oscillationCo(0.4), 1.1, 1e-12);
+    EXPECT_EQ(multiResolutionSPEM::oscillationCo(0), 0);
+    EXPECT_NEAR(multiResolutionSPEM::oscillationCo(1), 1.2, 1e-12);
+    EXPECT_NEAR(multiResolutionSPEM::maxQuietCo(0.1), 0.46, 1e-12);
+    EXPECT_NEAR(multiResolutionSPEM::maxQuietCo(0.5), 0.8, 1e-12);
+
+    setControl("endTime", "0.001");
+    for
+    (
+        const auto& [phi, maxCo, warned] :
+        {
+            std::tuple<std::string, std::string, bool>{"0.1", "0.8", true},
+            {"0.1", "0.46", false},
+            {"0.5", "0.8", false},
+            {"0.5", "0.9", true}
+        }
+    )
+    {
+        SCOPED_TRACE("phi " + phi + ", maxCo " + maxCo);
+        schemes_ =
+            "method          multiResolutionSPEM;\n"
+            "coupling\n{\n    interfaceVelocityCorrection " + phi + ";\n}\n";
+        setControl("maxCo", maxCo);
+        const std::string text = runExpectingSuccess();
+        if (warned)
+        {
+            expectInLog
+            (
+                text,
+                {
+                    "Warning", "interfaceVelocityCorrection " + phi,
+                    "oscillate from Courant number "
+                  + std::string(phi == "0.1" ? "0.7" : "1.2"),
+                    "set maxCo " + std::string(phi == "0.1" ? "0.46" : "0.8"),
+                    "system/controlDict", "system/spemSchemes"
+                }
+            );
+        }
+        else
+        {
+            EXPECT_FALSE(contains(text, "starts to oscillate")) << text;
+        }
+    }
+    schemes_ =
+        "method          multiResolutionSPEM;\n"
+        "coupling\n{\n    interfaceVelocityCorrection 0;\n}\n";
+    setControl("maxCo", "0.5");
+    expectInLog
+    (
+        runExpectingSuccess(),
+        {
+            "Warning", "interfaceVelocityCorrection 0 with",
+            "every Courant number measured", "system/spemSchemes"
         }
     );
 }

@@ -30,6 +30,26 @@ Foam::elementParticleCoupling::ghostSearchTypeNames
 });
 
 
+// * * * * * * * * * * * * * Static Member Functions * * * * * * * * * * * //
+
+Foam::scalar Foam::elementParticleCoupling::readVelocityCorrection
+(
+    const dictionary& schemesDict
+)
+{
+    const dictionary& d = schemesDict.subOrEmptyDict("coupling");
+    const scalar phi =
+        d.getOrDefault<scalar>("interfaceVelocityCorrection", 0.1);
+    if (!(phi >= 0 && phi <= 1))
+    {
+        FatalIOErrorInFunction(d)
+            << "coupling/interfaceVelocityCorrection (phi of eq. 26)"
+            << " must lie in [0, 1], found " << phi << exit(FatalIOError);
+    }
+    return phi;
+}
+
+
 // * * * * * * * * * * * * * * * * Constructors  * * * * * * * * * * * * * * //
 
 Foam::elementParticleCoupling::elementParticleCoupling
@@ -53,7 +73,7 @@ Foam::elementParticleCoupling::elementParticleCoupling
       : ghostSearchType::particleSupport
     ),
     imbalance_{0, 0},
-    velocityCorrection_(0.1),
+    velocityCorrection_(readVelocityCorrection(schemesDict)),
     interfaceSuction_(true),
     smoothingLengthRatio_(smoothingLengthRatio),
     refinedRadiusRatio_(refinedRadiusRatio)
@@ -73,18 +93,6 @@ Foam::elementParticleCoupling::elementParticleCoupling
             d->getOrDefault<Switch>("interfaceSuction", interfaceSuction_);
         ghostSearch_ =
             ghostSearchTypeNames.getOrDefault("ghostSearch", *d, ghostSearch_);
-        velocityCorrection_ =
-            d->getOrDefault<scalar>
-            (
-                "interfaceVelocityCorrection", velocityCorrection_
-            );
-        if (!(velocityCorrection_ >= 0 && velocityCorrection_ <= 1))
-        {
-            FatalIOErrorInFunction(*d)
-                << "coupling/interfaceVelocityCorrection (phi of eq. 26)"
-                << " must lie in [0, 1], found " << velocityCorrection_
-                << exit(FatalIOError);
-        }
         interfaceForce_ =
             interfaceForceTypeNames.getOrDefault
             (
