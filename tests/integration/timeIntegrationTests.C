@@ -9,6 +9,8 @@ Description
         steps, in the element half and in the particle half; with the step
         dt^{n+1/2} in place of the span it is wrong by O(dt);
       - mass-proportional damping gives the same velocities in both halves;
+      - the absorbing layer's damping acts in the water outside its box, in
+        both halves, and not on a solid's nodes;
       - a vibrating bar whose step grows during the run converges at
         second order: the change of the solution falls by 4 when the step
         halves (first order: by 2).
@@ -18,6 +20,7 @@ Description
 #include "testMeshes.H"
 #include "testModels.H"
 #include "sphFluid.H"
+#include "absorbingLayer.H"
 #include "IStringStream.H"
 
 #include <gtest/gtest.h>
@@ -302,3 +305,82 @@ TEST(CentralDifferences, secondOrderWhenTheStepGrows)
 
 
 // ************************************************************************* //
+
+
+TEST(AbsorbingLayer, dampsTheWaterOutsideItsBoxOnly)
+{
+    // No gravity and a uniform velocity: no forces, so the first half
+    // kick (span s = dt/2) is the damping alone, v = u0/(1 + alpha(x) s)
+    // at each water node and particle (alpha = 50 (d/0.2)^2 at a distance
+    // d < 0.2 m from the box 0.3 < x < 0.7, 50 beyond), and u0 on the
+    // nodes of the solid plate under the water, the interface's included
+    IStringStream is
+    (
+        "absorbingLayer { min (0.3 -10 0); max (0.7 10 0);"
+        " thickness 0.2; coefficient 50; }"
+    );
+    const absorbingLayer layer = absorbingLayer::read(dictionary(is));
+    ASSERT_TRUE(layer.active());
+    const auto expected = [](const scalar x, const scalar s)
+    {
+        const scalar d = std::max({0.3 - x, x - 0.7, 0.0});
+        const scalar alpha = 50*std::min(d/0.2, 1.0)*std::min(d/0.2, 1.0);
+        return 0.3/(1 + alpha*s);
+    };
+    EXPECT_DOUBLE_EQ(layer.alpha(0.5, 3), 0);
+    EXPECT_DOUBLE_EQ(layer.alpha(0.2, -7), 50*0.25);
+    EXPECT_DOUBLE_EQ(layer.alpha(1.2, 0), 50);
+
+    const triMesh mesh = testMeshes::build
+    (
+        {{0, 1, -0.1, 0, 10, 1, "plate"}, {0, 1, 0, 0.5, 10, 5, "water"}}
+    );
+    auto em = testModels::model
+    (
+        mesh,
+        {
+            {"water", "model weaklyCompressibleNewtonian; rho 1000; c 20;"},
+            {"plate", "model linearElastic; rho 2700; E 67.5e9; nu 0.34;"}
+        }
+    );
+    em->setAbsorbingLayer(layer);
+    std::vector<scalar> v(2*em->nNodes(), 0);
+    for (label n = 0; n < em->nNodes(); ++n) v[2*n] = 0.3;
+    em->setVelocity(v);
+    ASSERT_TRUE(em->evaluate());
+    const scalar dt = 0.5*em->stableDeltaT();
+    const std::vector<scalar> X = em->positions();
+    ASSERT_TRUE(em->advance(dt)) << em->failure();
+    label damped = 0, solid = 0;
+    for (label n = 0; n < em->nNodes(); ++n)
+    {
+        const scalar u = em->velocities()[2*n];
+        if (X[2*n + 1] <= 1e-12)
+        {
+            EXPECT_DOUBLE_EQ(u, 0.3) << "plate node " << n;
+            ++solid;
+        }
+        else
+        {
+            EXPECT_NEAR(u, expected(X[2*n], 0.5*dt), 1e-15) << "node " << n;
+            if (u < 0.3) ++damped;
+        }
+        EXPECT_NEAR(em->velocities()[2*n + 1], 0, 1e-15);
+    }
+    EXPECT_EQ(solid, 22);
+    EXPECT_EQ(damped, 5*6);     // x = 0, 0.1, 0.2, 0.8, 0.9, 1 above y = 0
+
+    sphFluid fluid = particleBlock(0, 0.3, 0);
+    fluid.setAbsorbingLayer(layer);
+    ASSERT_TRUE(fluid.evaluate());
+    const std::vector<scalar> x = fluid.particles().positions();
+    ASSERT_TRUE(fluid.advance(dt)) << fluid.failure();
+    damped = 0;
+    for (label i = 0; i < fluid.particles().size(); ++i)
+    {
+        const scalar u = fluid.particles().velocities()[2*i];
+        EXPECT_NEAR(u, expected(x[2*i], 0.5*dt), 1e-15) << "particle " << i;
+        if (u < 0.3) ++damped;
+    }
+    EXPECT_EQ(damped, 3*5);     // x = 0.05, 0.15, 0.25
+}

@@ -916,6 +916,22 @@ TEST_F(Solver, finiteButAbsurdPhysicalValueStopsNamingEntryAndFile)
         {"massProportional 1e200", "'massProportional'",
          "constant/spemProperties",
          [this]() { damping_ = "    massProportional 1e200;\n"; }},
+        {"absorbingLayer thickness 0", "'thickness'",
+         "constant/spemProperties",
+         [this]()
+         {
+             damping_ =
+                 "    absorbingLayer { min (0 0 0); max (1 1 0);"
+                 " thickness 0; coefficient 5; }\n";
+         }},
+        {"absorbingLayer coefficient 1e200", "'coefficient'",
+         "constant/spemProperties",
+         [this]()
+         {
+             damping_ =
+                 "    absorbingLayer { min (0 0 0); max (1 1 0);"
+                 " thickness 1; coefficient 1e200; }\n";
+         }},
         {"maxCo 1e200", "'maxCo'", "system/controlDict",
          [this]() { setControl("maxCo", "1e200"); }},
         {"body mass 1e200", "'mass'", "constant/rigidBodyProperties",
@@ -956,6 +972,30 @@ TEST_F(Solver, finiteButAbsurdPhysicalValueStopsNamingEntryAndFile)
         rigidBodies_ = bodies;
         controls_ = controls;
         schemes_ = schemes;
+    }
+}
+
+
+TEST_F(Solver, badAbsorbingLayerStopsNamingItsEntry)
+{
+    // An empty box, a misspelt keyword and a missing entry, each before
+    // the first step
+    const std::vector<std::pair<std::string, std::vector<std::string>>> cases
+    {
+        {"min (0 0 0); max (1 0 0); thickness 1; coefficient 5;",
+         {"absorbingLayer", "must exceed min", "constant/spemProperties"}},
+        {"min (0 0 0); max (1 1 0); thickness 1; coeficient 5;",
+         {"coeficient", "constant/spemProperties"}},
+        {"min (0 0 0); max (1 1 0); coefficient 5;",
+         {"thickness", "constant/spemProperties"}}
+    };
+    for (const auto& [entries, expected] : cases)
+    {
+        SCOPED_TRACE(entries);
+        damping_ = "    absorbingLayer { " + entries + " }\n";
+        std::vector<std::string> words = expected;
+        words.insert(words.begin(), "FATAL IO ERROR");
+        expectInLog(runExpectingFatalError(), words);
     }
 }
 

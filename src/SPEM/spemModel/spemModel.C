@@ -218,11 +218,18 @@ Foam::scalar Foam::spemModel::readDamping() const
 {
     const dictionary* dampingDict = findDict("damping");
     if (!dampingDict) return 0;
-    checkKeywords(*dampingDict, {"massProportional"});
+    checkKeywords(*dampingDict, {"massProportional", "absorbingLayer"});
     return getCheckedOrDefault
     (
         *dampingDict, "massProportional", 0, saneRange::damping
     );
+}
+
+
+Foam::absorbingLayer Foam::spemModel::readAbsorbingLayer() const
+{
+    const dictionary* dampingDict = findDict("damping");
+    return dampingDict ? absorbingLayer::read(*dampingDict) : absorbingLayer();
 }
 
 
@@ -359,6 +366,12 @@ void Foam::spemModel::describe() const
         Info<< "    mass-proportional damping " << case_->massDamping
             << " 1/s" << nl;
     }
+    if (case_->absorbing.active())
+    {
+        Info<< "    ";
+        case_->absorbing.describe(Info);
+        Info<< nl;
+    }
     Info<< endl;
 }
 
@@ -467,7 +480,8 @@ Foam::spemModel::spemModel(Time& runTime)
         new spemCase
         {
             runTime_, schemes_, *this, mesh_, bodies_, patchTypes_, g_,
-            damping, getOrDefault<scalar>("slipCornerAngle", 10), restart_,
+            damping, readAbsorbingLayer(),
+            getOrDefault<scalar>("slipCornerAngle", 10), restart_,
             readLeaving(), slidingNoSlip_
         }
     );

@@ -76,6 +76,7 @@ void Foam::spemMethod::createElementHalf
     elements_->setWallFriction(std::move(friction));
     elements_->setGravity(case_.g[0], case_.g[1]);
     elements_->setMassDamping(case_.massDamping);
+    elements_->setAbsorbingLayer(case_.absorbing);
     if (case_.restart.readElements(*elements_))
     {
         elements_->setPreviousDeltaT(case_.restart.readPreviousDeltaT());
@@ -127,6 +128,7 @@ void Foam::spemMethod::createParticleHalf
         )
     );
     particles_->setMassDamping(case_.massDamping);
+    particles_->setAbsorbingLayer(case_.absorbing);
     particles_->timeSearchIn(&cost_);
     // A particle is outside the tank farther than a kernel support from it:
     // nearer, it still sees the wall particles

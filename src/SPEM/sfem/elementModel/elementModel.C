@@ -839,10 +839,20 @@ inline bool Foam::elementModel::integrateNode
         f[1] += force[2*h + 1];
     }
     const scalar invM = 1/nodeMass_[n];
+    scalar keepN = keep, gainN = gain;
+    if (absorbing_.active() && !solidNode_[n])
+    {
+        const scalar alpha = absorbing_.alpha(x[2*n], x[2*n + 1]);
+        if (alpha > 0)
+        {
+            keepN = 1/(1 + (massDamping_ + alpha)*span);
+            gainN = span*keepN;
+        }
+    }
     scalar vn[2] =
     {
-        keep*v[2*n] + gain*(f[0]*invM + gravity_[0]),
-        keep*v[2*n + 1] + gain*(f[1]*invM + gravity_[1])
+        keepN*v[2*n] + gainN*(f[0]*invM + gravity_[0]),
+        keepN*v[2*n + 1] + gainN*(f[1]*invM + gravity_[1])
     };
     if (nodeConstraint_[n] != constraint::free)
     {
@@ -869,7 +879,7 @@ inline bool Foam::elementModel::integrateNode
             vn[0] = vn[1] = 0;
         }
         // The force that removed the constrained velocity
-        const scalar mOverGain = nodeMass_[n]/gain;
+        const scalar mOverGain = nodeMass_[n]/gainN;
         reaction[0] = mOverGain*(vn[0] - vFree[0]);
         reaction[1] = mOverGain*(vn[1] - vFree[1]);
     }

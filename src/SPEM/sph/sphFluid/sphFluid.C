@@ -1339,8 +1339,18 @@ bool Foam::sphFluid::advance(const scalar dt)
     for (label f = 0; f < nFluid; ++f)
     {
         const label i = fluid[f];
-        const scalar vx = keep*v[2*i] + gain*a[2*i];
-        const scalar vy = keep*v[2*i + 1] + gain*a[2*i + 1];
+        scalar keepI = keep, gainI = gain;
+        if (absorbing_.active())
+        {
+            const scalar alpha = absorbing_.alpha(x[2*i], x[2*i + 1]);
+            if (alpha > 0)
+            {
+                keepI = 1/(1 + (massDamping_ + alpha)*span);
+                gainI = span*keepI;
+            }
+        }
+        const scalar vx = keepI*v[2*i] + gainI*a[2*i];
+        const scalar vy = keepI*v[2*i + 1] + gainI*a[2*i + 1];
         v[2*i] = vx;
         v[2*i + 1] = vy;
 
