@@ -842,12 +842,10 @@ inline bool Foam::elementModel::integrateNode
     scalar keepN = keep, gainN = gain;
     if (absorbing_.active() && !solidNode_[n])
     {
-        const scalar alpha = absorbing_.alpha(x[2*n], x[2*n + 1]);
-        if (alpha > 0)
-        {
-            keepN = 1/(1 + (massDamping_ + alpha)*span);
-            gainN = span*keepN;
-        }
+        absorbing_.dampingFactors
+        (
+            x[2*n], x[2*n + 1], massDamping_, span, keepN, gainN
+        );
     }
     scalar vn[2] =
     {

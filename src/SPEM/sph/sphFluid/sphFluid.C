@@ -1342,12 +1342,10 @@ bool Foam::sphFluid::advance(const scalar dt)
         scalar keepI = keep, gainI = gain;
         if (absorbing_.active())
         {
-            const scalar alpha = absorbing_.alpha(x[2*i], x[2*i + 1]);
-            if (alpha > 0)
-            {
-                keepI = 1/(1 + (massDamping_ + alpha)*span);
-                gainI = span*keepI;
-            }
+            absorbing_.dampingFactors
+            (
+                x[2*i], x[2*i + 1], massDamping_, span, keepI, gainI
+            );
         }
         const scalar vx = keepI*v[2*i] + gainI*a[2*i];
         const scalar vy = keepI*v[2*i + 1] + gainI*a[2*i + 1];
