@@ -4012,6 +4012,8 @@ TEST_F(Solver, outOfRangeSphValueStops)
             {"wallLayers", "11"},
             {"initialRelaxation", "-1"},
             {"initialRelaxation", "100001"},
+            {"conversionRelaxation", "-1"},
+            {"conversionRelaxation", "10001"},
             {"relaxationCoefficient", "0"},
             {"relaxationCoefficient", "0.3"},
             // Replaced by the tank (tank/leaving): named, not ignored

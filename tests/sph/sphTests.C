@@ -751,6 +751,183 @@ TEST(SphFluid, relaxationOpensBarycentrePairsAndKeepsMassDensityVelocity)
 }
 
 
+TEST(SphFluid, conversionRelaxationOpensNewPairsOnlyAndQuietsThem)
+{
+    // Water at rest under gravity in a tank of walls open at the top: the
+    // lower half an even lattice (relaxed barycentres), the upper half
+    // appended during the run as a conversion makes it, at the barycentres
+    // of a split right mesh (a close pair, 0.47 dx apart, per cell), with
+    // hydrostatic densities. Left to the pressure forces the pairs open
+    // with a jolt that sets the new water moving; relaxed before their
+    // first density pass (sph/conversionRelaxation) they open by pure
+    // shifts, and the particles that were there stay where they are
+    const scalar dx = 0.01, rho0 = 1000, c = 20, g = 9.81;
+    const label n = 16;
+    const scalar h = 1.3*dx/std::sqrt(2.0), H = n*dx;
+    const auto barycentres = [&](particleSet& ps, const label j0, const label j1)
+    {
+        for (label j = j0; j < j1; ++j)
+        {
+            for (label i = 0; i < n; ++i)
+            {
+                for (const scalar f : {1.0/3, 2.0/3})
+                {
+                    // Hydrostatic (eq. 7)
+                    const scalar y = (j + f)*dx;
+                    ps.append
+                    (
+                        (i + 1 - f)*dx, y, 0, 0, rho0*(1 + g*(H - y)/(c*c)),
+                        0, 0.5*rho0*dx*dx, h
+                    );
+                }
+            }
+        }
+    };
+    particleSet lower;
+    barycentres(lower, 0, n/2);
+    const scalar ws = dx/std::sqrt(2.0);
+    for (label layer = 0; layer < 3; ++layer)
+    {
+        const scalar off = (layer + 0.5)*ws;
+        for (label k = -3; k < label(n*dx/ws) + 3; ++k)
+        {
+            const scalar s = (k + 0.5)*ws;
+            const auto wall = particleSet::kind::wall;
+            lower.append(s, -off, 0, 0, rho0, 0, rho0*ws*ws, h, wall);
+            if (k >= 0)
+            {
+                lower.append(-off, s, 0, 0, rho0, 0, rho0*ws*ws, h, wall);
+                lower.append(n*dx + off, s, 0, 0, rho0, 0, rho0*ws*ws, h, wall);
+            }
+        }
+    }
+    particleSet upper;
+    barycentres(upper, n/2, n);
+
+    struct outcome
+    {
+        scalar closestMade, closest, speed;
+        label nOldMoved, nNewChanged;
+    };
+    const auto run = [&](const std::string& entries)
+    {
+        const scalar lo[2] = {-1, -1}, hi[2] = {1, 1};
+        sphFluid fluid
+        (
+            schemes(entries), particleSet(lower), rho0, c, 1e-3, 0, -g, lo, hi
+        );
+        fluid.relax(200);
+        const scalar dt = 0.5*h/c;
+        for (int step = 0; step < 5; ++step)
+        {
+            EXPECT_TRUE(fluid.evaluate()) << fluid.failure();
+            fluid.advance(dt);
+        }
+        // The state of each particle, by id
+        struct state { scalar x, y, u, v, rho, m; };
+        const auto states = [](const sphFluid& f)
+        {
+            std::map<label, state> s;
+            const particleSet& p = f.particles();
+            for (label i = 0; i < p.size(); ++i)
+            {
+                const scalar* x = &p.positions()[2*i];
+                const scalar* v = &p.velocities()[2*i];
+                s[p.id()[i]] = {x[0], x[1], v[0], v[1], p.density()[i], p.mass()[i]};
+            }
+            return s;
+        };
+        const label firstNew = states(fluid).rbegin()->first + 1;
+        fluid.appendFluid(upper);
+        // Closest pair of new particles away from the walls and the
+        // surface by 3 dx, and above the lower half by 1 dx
+        const auto closestNew = [&](const sphFluid& f)
+        {
+            const particleSet& p = f.particles();
+            const scalar* x = p.positions().data();
+            scalar d = GREAT;
+            for (label i = 0; i < p.size(); ++i)
+            {
+                if
+                (
+                    p.id()[i] < firstNew || x[2*i] < 3*dx
+                 || x[2*i] > (n - 3)*dx || x[2*i + 1] < (n/2 + 1)*dx
+                 || x[2*i + 1] > (n - 3)*dx
+                )
+                {
+                    continue;
+                }
+                for (label j = 0; j < p.size(); ++j)
+                {
+                    if (j == i || p.id()[j] < firstNew) continue;
+                    d = std::min
+                    (
+                        d, std::hypot(x[2*i] - x[2*j], x[2*i + 1] - x[2*j + 1])
+                    );
+                }
+            }
+            return d;
+        };
+        outcome o{};
+        o.closestMade = closestNew(fluid);
+        const std::map<label, state> before = states(fluid);
+        EXPECT_TRUE(fluid.evaluate()) << fluid.failure();
+        o.closest = closestNew(fluid);
+        for (const auto& [id, a] : states(fluid))
+        {
+            const state& b = before.at(id);
+            if (id < firstNew)
+            {
+                o.nOldMoved += a.x != b.x || a.y != b.y;
+            }
+            else
+            {
+                o.nNewChanged +=
+                    a.u != b.u || a.v != b.v || a.rho != b.rho || a.m != b.m;
+            }
+        }
+        // The new particles' RMS speed over the next 300 steps of 0.5 h/c
+        // (some 20 acoustic crossings of a pair)
+        scalar sum = 0;
+        label count = 0;
+        for (int step = 0; step < 300; ++step)
+        {
+            fluid.advance(dt);
+            EXPECT_TRUE(fluid.evaluate()) << fluid.failure();
+            const particleSet& p = fluid.particles();
+            for (label i = 0; i < p.size(); ++i)
+            {
+                if (p.id()[i] < firstNew) continue;
+                sum += sqr(p.velocities()[2*i]) + sqr(p.velocities()[2*i + 1]);
+                ++count;
+            }
+        }
+        o.speed = std::sqrt(sum/count);
+        return o;
+    };
+    const outcome plain = run("conversionRelaxation 0;");
+    const outcome relaxed = run("");
+    std::printf
+    (
+        "new particles: closest interior pair %.3f dx as made; after their"
+        " first evaluation %.3f dx with conversionRelaxation 0, %.3f dx with"
+        " the default (50); RMS speed over 300 steps %.4f and %.4f m/s"
+        " (sqrt(g H) %.3f m/s)\n",
+        plain.closestMade/dx, plain.closest/dx, relaxed.closest/dx,
+        plain.speed, relaxed.speed, std::sqrt(g*H)
+    );
+    EXPECT_NEAR(plain.closestMade/dx, std::sqrt(2.0)/3, 1e-9);
+    EXPECT_NEAR(plain.closest/dx, std::sqrt(2.0)/3, 1e-9);
+    // Towards the staggered lattice (nearest distance dx/sqrt 2)
+    EXPECT_GT(relaxed.closest/dx, 0.6);
+    EXPECT_EQ(plain.nOldMoved, 0);
+    EXPECT_EQ(relaxed.nOldMoved, 0);
+    EXPECT_EQ(plain.nNewChanged, 0);
+    EXPECT_EQ(relaxed.nNewChanged, 0);
+    EXPECT_LT(relaxed.speed, 0.7*plain.speed);
+}
+
+
 // * * * * * * * * * * * * * * * Wall particles  * * * * * * * * * * * * * * //
 
 TEST(WallParticles, layersAndCornersOutsideTheMeshAtTheirSpacing)

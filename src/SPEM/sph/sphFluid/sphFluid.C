@@ -72,6 +72,38 @@ namespace
         }
     }
 
+    //- One relaxation shift -beta h^2 grad C (tangential at the free
+    //  surface, div r below threshold), at most cap h; returns its length
+    //  in smoothing lengths, at most cap
+    inline scalar relaxationShift
+    (
+        const scalar gCx,
+        const scalar gCy,
+        const scalar divR,
+        const scalar h,
+        const scalar beta,
+        const scalar threshold,
+        const scalar cap,
+        scalar& sx,
+        scalar& sy
+    )
+    {
+        const scalar D = beta*h*h;
+        sx = -D*gCx;
+        sy = -D*gCy;
+        if (divR < threshold)
+        {
+            tangentialShift(gCx, gCy, sx, sy);
+        }
+        const scalar s = std::sqrt(sx*sx + sy*sy)/h;
+        if (s > cap)
+        {
+            sx *= cap/s;
+            sy *= cap/s;
+        }
+        return std::min(s, cap);
+    }
+
     //- The pressure term of eq. (16): the acceleration of fluid particle i
     //  due to the pressure of particle j, with (dx, dy) = x_i - x_j and F
     //  = F(r, h_ij) of the kernel. With the kernel gradient as the paper
@@ -310,6 +342,8 @@ void Foam::sphFluid::controls::readEntries(const dictionary& d)
         (
             "relaxationCoefficient", relaxationCoefficient
         );
+    conversionRelaxation =
+        d.getOrDefault<label>("conversionRelaxation", conversionRelaxation);
     structureSuction =
         d.getOrDefault<Switch>("structureSuction", structureSuction);
     pairCache = d.getOrDefault<Switch>("pairCache", pairCache);
@@ -330,7 +364,8 @@ Foam::sphFluid::controls::read(const dictionary& schemesDict)
             "smoothingLengthRatio", "gradientCorrection", "densityDiffusion",
             "shifting", "freeSurfaceThreshold", "wallLayers",
             "momentumGradient", "initialRelaxation", "relaxationCoefficient",
-            "lostParticleDistance", "structureSuction", "pairCache"
+            "conversionRelaxation", "lostParticleDistance",
+            "structureSuction", "pairCache"
         }
     );
     c.readEntries(*d);
@@ -363,6 +398,14 @@ Foam::sphFluid::controls::read(const dictionary& schemesDict)
     if (c.initialRelaxation < 0 || c.initialRelaxation > 100000)
     {
         bad("initialRelaxation", "must lie in [0, 100000] iterations (0: off)");
+    }
+    if (c.conversionRelaxation < 0 || c.conversionRelaxation > 10000)
+    {
+        bad
+        (
+            "conversionRelaxation",
+            "must lie in [0, 10000] iterations (0: off)"
+        );
     }
     if (!(c.relaxationCoefficient > 0 && c.relaxationCoefficient <= 0.2))
     {
@@ -649,6 +692,69 @@ void Foam::sphFluid::resizeFields()
     }
     gradC_.resize(2*n, 0);
     divR_.resize(n, 2);
+}
+
+
+template<class Kernel>
+Foam::scalar Foam::sphFluid::relaxFreshPass(const Kernel&)
+{
+    const scalar kappa = Kernel::support;
+    const scalar* __restrict__ m = particles_.mass().data();
+    const scalar* __restrict__ h = particles_.smoothingLength().data();
+    const scalar* __restrict__ rho = particles_.density().data();
+    const particleSet::kind* __restrict__ kind = particles_.kinds().data();
+    const scalar* __restrict__ rhoOld = oldDensity_.data();
+    const scalar beta = controls_.relaxationCoefficient;
+    const scalar threshold = controls_.freeSurfaceThreshold;
+    const scalar rho0 = rho0_;
+
+    const label n = label(fresh_.size());
+    freshShift_.resize(2*n);
+    scalar largest = 0;
+    const label* __restrict__ fresh = fresh_.data();
+    scalar* __restrict__ shift = freshShift_.data();
+    #pragma omp parallel for schedule(static) reduction(max: largest) if(n > minParallelParticles)
+    for (label f = 0; f < n; ++f)
+    {
+        const label i = fresh[f];
+        densitySums sums;
+        cells_.forEachNeighbour
+        (
+            particles_, i, kappa,
+            [&](const label j, const scalar dx, const scalar dy, const scalar r)
+            {
+                const scalar F = Kernel::F(r, 0.5*(h[i] + h[j]));
+                const bool fluidj = kind[j] == particleSet::kind::fluid;
+                const bool ghostj = kind[j] == particleSet::kind::ghost;
+                const scalar Vj =
+                    m[j]/(fluidj ? rhoOld[j] : (ghostj ? rho[j] : rho0));
+                sums.addMoments(dx, dy, dx*F, dy*F, Vj);
+            }
+        );
+        scalar sx, sy;
+        largest = std::max
+        (
+            largest,
+            relaxationShift
+            (
+                sums.gCx, sums.gCy, sums.div, h[i], beta, threshold,
+                relaxationMaxShift, sx, sy
+            )
+        );
+        shift[2*f] = sx;
+        shift[2*f + 1] = sy;
+    }
+    // Jacobi: every shift from the positions before the iteration
+    scalar* __restrict__ x = particles_.positions().data();
+    for (label f = 0; f < n; ++f)
+    {
+        const label i = fresh[f];
+        x[2*i] += shift[2*f];
+        x[2*i + 1] += shift[2*f + 1];
+        oldPosition_[2*i] = x[2*i];
+        oldPosition_[2*i + 1] = x[2*i + 1];
+    }
+    return largest;
 }
 
 
@@ -1254,6 +1360,19 @@ bool Foam::sphFluid::evaluate()
     }
     indexParticles();
 
+    // Particles made by conversion since the last evaluation (not those
+    // of the start, before the first step): open their close pairs before
+    // their first density pass (see controls::conversionRelaxation)
+    if
+    (
+        controls_.conversionRelaxation > 0
+     && previousDeltaT_ > 0
+     && nextId_ > freshIdBegin_
+    )
+    {
+        relaxFresh(controls_.conversionRelaxation);
+    }
+
     kernel_->visit([this](const auto& k) { densityPass(k); });
     pendingDeltaT_ = 0;
     freshIdBegin_ = nextId_;
@@ -1397,25 +1516,53 @@ Foam::scalar Foam::sphFluid::relax(const label iterations)
         for (label f = 0; f < nFluid; ++f)
         {
             const label i = fluid[f];
-            const scalar D = beta*h[i]*h[i];
-            scalar sx = -D*gradC[2*i], sy = -D*gradC[2*i + 1];
-            if (divR[i] < threshold)
-            {
-                tangentialShift(gradC[2*i], gradC[2*i + 1], sx, sy);
-            }
-            const scalar s = std::sqrt(sx*sx + sy*sy)/h[i];
-            if (s > cap)
-            {
-                sx *= cap/s;
-                sy *= cap/s;
-            }
-            largest = std::max(largest, std::min(s, cap));
+            scalar sx, sy;
+            largest = std::max
+            (
+                largest,
+                relaxationShift
+                (
+                    gradC[2*i], gradC[2*i + 1], divR[i], h[i], beta,
+                    threshold, cap, sx, sy
+                )
+            );
             x[2*i] += sx;
             x[2*i + 1] += sy;
         }
     }
     oldPosition_ = particles_.positions();
     return largest;
+}
+
+
+void Foam::sphFluid::relaxFresh(const label iterations)
+{
+    // The fluid particles appended since the last evaluation (binning the
+    // cells moves no particle: the indices hold)
+    fresh_.clear();
+    const label* __restrict__ id = particles_.id().data();
+    for (const label i : fluidIndex_)
+    {
+        if (id[i] >= freshIdBegin_) fresh_.push_back(i);
+    }
+    const scalar kappa = kernel_->support();
+    scalar last = 0;
+    for (label it = 0; it < iterations; ++it)
+    {
+        kernel_->visit([this, &last](const auto& k) { last = relaxFreshPass(k); });
+        // A shift is at most relaxationMaxShift h: the cells, of side
+        // kappa h_max, are binned again every rebinInterval iterations and
+        // after the last
+        if ((it + 1) % rebinInterval == 0 || it + 1 == iterations)
+        {
+            cells_.update(particles_, kappa*particles_.maxSmoothingLength());
+            indexParticles();
+        }
+    }
+    Info<< "    relaxation of the " << label(fresh_.size())
+        << " particles made by conversion: " << iterations
+        << " iterations, last shift at most " << last
+        << " smoothing lengths" << nl;
 }
 
 
