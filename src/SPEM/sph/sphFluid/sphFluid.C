@@ -1545,6 +1545,7 @@ void Foam::sphFluid::relaxFresh(const label iterations)
     {
         if (id[i] >= freshIdBegin_) fresh_.push_back(i);
     }
+    if (fresh_.empty()) return;
     const scalar kappa = kernel_->support();
     scalar last = 0;
     for (label it = 0; it < iterations; ++it)
