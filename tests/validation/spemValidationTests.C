@@ -697,7 +697,7 @@ TEST(SpemValidation, damBreakElasticPlateSubCycledAsWithOneStep)
     // 2.0-2.7 %, and sub-cycled from single-step at the same maxCo by
     // 1.8-3.3 % (before sph/conversionRelaxation: 1.2-3.6, 3.2-4.7 and
     // 1.9-4.5 %; 1.94 % at 0.8 alone). So each kind runs at those five
-    // maxCo and their mean curves are compared: 1.23 % (2.76 % before).
+    // maxCo and their mean curves are compared: 1.22 % (2.77 % before).
     // Stiffer plates ring after the impact: one pair of runs differed by
     // 3.3 % at E 3e7, 6.7 % at 1e8 (the water matched at Courant number
     // 0.1, 1e8 still rings apart by about 1e-4 m of its 0.9 mm)
