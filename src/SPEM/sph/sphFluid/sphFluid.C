@@ -72,6 +72,23 @@ namespace
         }
     }
 
+    //- The volume a neighbour j lends to sums at the start of a step: a
+    //  fluid particle's m/rho of the step before, a ghost's its element's
+    //  m/rho, a wall or structure particle's its lattice cell m/rho0
+    inline scalar neighbourVolume
+    (
+        const particleSet::kind k,
+        const scalar m,
+        const scalar rho,
+        const scalar rhoOld,
+        const scalar rho0
+    )
+    {
+        const bool fluid = k == particleSet::kind::fluid;
+        const bool ghost = k == particleSet::kind::ghost;
+        return m/(fluid ? rhoOld : (ghost ? rho : rho0));
+    }
+
     //- One relaxation shift -beta h^2 grad C (tangential at the free
     //  surface, div r below threshold), at most cap h; returns its length
     //  in smoothing lengths, at most cap
@@ -724,10 +741,8 @@ Foam::scalar Foam::sphFluid::relaxFreshPass(const Kernel&)
             [&](const label j, const scalar dx, const scalar dy, const scalar r)
             {
                 const scalar F = Kernel::F(r, 0.5*(h[i] + h[j]));
-                const bool fluidj = kind[j] == particleSet::kind::fluid;
-                const bool ghostj = kind[j] == particleSet::kind::ghost;
                 const scalar Vj =
-                    m[j]/(fluidj ? rhoOld[j] : (ghostj ? rho[j] : rho0));
+                    neighbourVolume(kind[j], m[j], rho[j], rhoOld[j], rho0);
                 sums.addMoments(dx, dy, dx*F, dy*F, Vj);
             }
         );
@@ -831,9 +846,7 @@ void Foam::sphFluid::densityPass(const Kernel&)
     #pragma omp for schedule(static)
     for (label j = 0; j < nAll; ++j)
     {
-        const bool fluidj = kind[j] == particleSet::kind::fluid;
-        const bool ghostj = kind[j] == particleSet::kind::ghost;
-        volume[j] = m[j]/(fluidj ? rhoOld[j] : (ghostj ? rho[j] : rho0));
+        volume[j] = neighbourVolume(kind[j], m[j], rho[j], rhoOld[j], rho0);
     }
 
     #pragma omp for schedule(static, passChunk) reduction(max: countMax) reduction(+: countSum)
@@ -1496,10 +1509,12 @@ Foam::scalar Foam::sphFluid::relax(const label iterations)
     const scalar threshold = controls_.freeSurfaceThreshold;
     const scalar cap = relaxationMaxShift;
     scalar largest = 0;
+    // Binning the cells reorders nothing: the indices hold for every
+    // iteration
+    indexParticles();
     for (label it = 0; it < iterations; ++it)
     {
         cells_.update(particles_, kappa*particles_.maxSmoothingLength());
-        indexParticles();
         // No step pending: the density pass keeps every density and only
         // measures grad C and div r at the current positions
         pendingDeltaT_ = 0;
@@ -1537,8 +1552,7 @@ Foam::scalar Foam::sphFluid::relax(const label iterations)
 
 void Foam::sphFluid::relaxFresh(const label iterations)
 {
-    // The fluid particles appended since the last evaluation (binning the
-    // cells moves no particle: the indices hold)
+    // The fluid particles appended since the last evaluation
     fresh_.clear();
     const label* __restrict__ id = particles_.id().data();
     for (const label i : fluidIndex_)
@@ -1553,11 +1567,10 @@ void Foam::sphFluid::relaxFresh(const label iterations)
         kernel_->visit([this, &last](const auto& k) { last = relaxFreshPass(k); });
         // A shift is at most relaxationMaxShift h: the cells, of side
         // kappa h_max, are binned again every rebinInterval iterations and
-        // after the last
+        // after the last (binning reorders nothing: the indices hold)
         if ((it + 1) % rebinInterval == 0 || it + 1 == iterations)
         {
             cells_.update(particles_, kappa*particles_.maxSmoothingLength());
-            indexParticles();
         }
     }
     Info<< "    relaxation of the " << label(fresh_.size())
