@@ -79,6 +79,38 @@ particleSet irregularParticles
 }
 
 
+//- 3 layers of dummy wall particles (density 1000, smoothing length h)
+//  at spacing ws round a tank open at the top whose bottom is y = 0 and
+//  whose sides are x = 0 (leftWall) and x = width: nw + 6 per layer below,
+//  nw up each side
+void appendTankWalls
+(
+    particleSet& ps,
+    const label nw,
+    const scalar ws,
+    const scalar width,
+    const scalar h,
+    const particleSet::kind leftWall = particleSet::kind::wall
+)
+{
+    for (label layer = 0; layer < 3; ++layer)
+    {
+        const scalar off = (layer + 0.5)*ws;
+        for (label k = -3; k < nw + 3; ++k)
+        {
+            const scalar s = (k + 0.5)*ws;
+            ps.append(s, -off, 0, 0, 1000, 0, 1000*ws*ws, h,
+                particleSet::kind::wall);
+            if (k >= 0)
+            {
+                ps.append(-off, s, 0, 0, 1000, 0, 1000*ws*ws, h, leftWall);
+                ps.append(width + off, s, 0, 0, 1000, 0, 1000*ws*ws, h,
+                    particleSet::kind::wall);
+            }
+        }
+    }
+}
+
 //- irregularParticles(n, dx, 0.1, positionSeed) with random velocities of
 //  up to 0.5 m/s per component (velocitySeed), on 3 layers of dummy wall
 //  particles at spacing dx: no-slip below and right, leftWall on the left
@@ -95,23 +127,7 @@ particleSet waterBlockInWalls
     std::mt19937 gen(velocitySeed);
     std::uniform_real_distribution<scalar> u(-0.5, 0.5);
     for (scalar& v : ps.velocities()) v = u(gen);
-    for (label layer = 0; layer < 3; ++layer)
-    {
-        const scalar off = (layer + 0.5)*dx;
-        for (label k = -3; k < n + 3; ++k)
-        {
-            const scalar s = (k + 0.5)*dx;
-            ps.append(s, -off, 0, 0, 1000, 0, 1000*dx*dx, 1.3*dx,
-                particleSet::kind::wall);
-            if (k >= 0)
-            {
-                ps.append(-off, s, 0, 0, 1000, 0, 1000*dx*dx, 1.3*dx,
-                    leftWall);
-                ps.append(n*dx + off, s, 0, 0, 1000, 0, 1000*dx*dx, 1.3*dx,
-                    particleSet::kind::wall);
-            }
-        }
-    }
+    appendTankWalls(ps, n, dx, n*dx, 1.3*dx, leftWall);
     return ps;
 }
 
@@ -679,20 +695,7 @@ TEST(SphFluid, relaxationOpensBarycentrePairsAndKeepsMassDensityVelocity)
     }
     const label nFluid = ps.size();
     const scalar ws = dx/std::sqrt(2.0);
-    for (label layer = 0; layer < 3; ++layer)
-    {
-        const scalar off = (layer + 0.5)*ws;
-        for (label k = -3; k < label(n*dx/ws) + 3; ++k)
-        {
-            const scalar s = (k + 0.5)*ws;
-            ps.append(s, -off, 0, 0, 1000, 0, 1000*ws*ws, h, particleSet::kind::wall);
-            if (k >= 0)
-            {
-                ps.append(-off, s, 0, 0, 1000, 0, 1000*ws*ws, h, particleSet::kind::wall);
-                ps.append(n*dx + off, s, 0, 0, 1000, 0, 1000*ws*ws, h, particleSet::kind::wall);
-            }
-        }
-    }
+    appendTankWalls(ps, label(n*dx/ws), ws, n*dx, h);
     const particleSet initial = ps;
 
     // Smallest distance between two fluid particles away from the walls
@@ -786,21 +789,7 @@ TEST(SphFluid, conversionRelaxationOpensNewPairsOnlyAndQuietsThem)
     particleSet lower;
     barycentres(lower, 0, n/2);
     const scalar ws = dx/std::sqrt(2.0);
-    for (label layer = 0; layer < 3; ++layer)
-    {
-        const scalar off = (layer + 0.5)*ws;
-        for (label k = -3; k < label(n*dx/ws) + 3; ++k)
-        {
-            const scalar s = (k + 0.5)*ws;
-            const auto wall = particleSet::kind::wall;
-            lower.append(s, -off, 0, 0, rho0, 0, rho0*ws*ws, h, wall);
-            if (k >= 0)
-            {
-                lower.append(-off, s, 0, 0, rho0, 0, rho0*ws*ws, h, wall);
-                lower.append(n*dx + off, s, 0, 0, rho0, 0, rho0*ws*ws, h, wall);
-            }
-        }
-    }
+    appendTankWalls(lower, label(n*dx/ws), ws, n*dx, h);
     particleSet upper;
     barycentres(upper, n/2, n);
 

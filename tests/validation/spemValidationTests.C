@@ -755,23 +755,21 @@ TEST(SpemValidation, damBreakElasticPlateSubCycledAsWithOneStep)
     const auto meanCurve = [&](const std::string& kind)
     {
         std::vector<std::vector<double>> mean;
+        std::vector<std::size_t> rowOf(tips[kind].size(), 1);
         for (const auto& row : times)
         {
             const double t = row[0];
             double sum = 0;
             bool inside = true;
-            for (const auto& tip : tips[kind])
+            for (std::size_t r = 0; r < tips[kind].size(); ++r)
             {
+                const auto& tip = tips[kind][r];
                 if (tip.size() < 2 || t < tip.front()[0] || t > tip.back()[0])
                 {
                     inside = false;
                     break;
                 }
-                size_t k = 1;
-                while (k + 1 < tip.size() && tip[k][0] < t) ++k;
-                const double w =
-                    (t - tip[k - 1][0])/(tip[k][0] - tip[k - 1][0]);
-                sum += (1 - w)*tip[k - 1][1] + w*tip[k][1];
+                sum += tutorialCases::valueAt(tip, t, rowOf[r]);
             }
             if (inside) mean.push_back({t, sum/tips[kind].size()});
         }
