@@ -315,6 +315,57 @@ void Foam::elementParticleCoupling::setGhosts
             }
             return cells_.anyParticleNear(ps, gx, gy, kappa, fluid);
         };
+    // The element's density as its own stress takes it: the mean over its
+    // three smoothing domains (eqs. 2, 5), not its bare m_e/A_e; each
+    // domain's density carried from the domain's centroid to the
+    // element's with the hydrostatic gradient, d rho = rho g.dx/c^2, so
+    // that the mean is exact at rest also where a domain is the element
+    // alone (an interface or boundary side)
+    const std::vector<label>& domains = elements.elementDomains();
+    const std::vector<label>& domainElems = elements.domainElements();
+    const std::vector<scalar>& domainMass = elements.domainMass();
+    const std::vector<scalar>& domainArea = elements.domainArea();
+    const scalar* gravity = elements.gravity();
+    const scalar invC2 = 1/sqr(particles.c());
+    const auto centroid = [&](const label el, scalar c[2])
+    {
+        const label* n = &nodes[3*el];
+        c[0] = (x[2*n[0]] + x[2*n[1]] + x[2*n[2]])/3;
+        c[1] = (x[2*n[0] + 1] + x[2*n[1] + 1] + x[2*n[2] + 1])/3;
+    };
+    const auto smoothedDensity = [&](const label el)
+    {
+        scalar c[2];
+        centroid(el, c);
+        scalar rho = 0;
+        for (label a = 0; a < 3; ++a)
+        {
+            const label k = domains[3*el + a];
+            scalar dc[2] = {0, 0}, A = 0;
+            for (label s = 0; s < 2; ++s)
+            {
+                const label e = domainElems[2*k + s];
+                if (e < 0) continue;
+                scalar ce[2];
+                centroid(e, ce);
+                dc[0] += area[e]*ce[0];
+                dc[1] += area[e]*ce[1];
+                A += area[e];
+            }
+            const scalar rhoK = domainMass[k]/domainArea[k];
+            rho +=
+                rhoK
+               *(
+                    1
+                  + (
+                        gravity[0]*(c[0] - dc[0]/A)
+                      + gravity[1]*(c[1] - dc[1]/A)
+                    )*invC2
+                );
+        }
+        return rho/3;
+    };
+
     // Split ghosts: the element's refined particles (eqs. 19-22, as
     // appendParticlesFromElements makes them); else one at the centroid
     const bool split = refinedRadiusRatio_ > 0;
@@ -511,6 +562,9 @@ void Foam::elementParticleCoupling::setGhosts
             scalar gx[3], gy[3], hg;
             candidates(el, gx, gy, hg);
             const label* n = &nodes[3*el];
+            // Eqs. (18, 20), with the density the element acts with (see
+            // the Description)
+            const scalar rhoGhost = smoothedDensity(el);
             for (label k = 0; k < perElement; ++k)
             {
                 if (!(reached & (1u << k))) continue;
@@ -526,8 +580,7 @@ void Foam::elementParticleCoupling::setGhosts
                     (v[2*n[0] + 1] + v[2*n[1] + 1] + v[2*n[2] + 1])/3;
                 ghostV_.push_back(split ? 0.5*(v[2*n[k]] + uc) : uc);
                 ghostV_.push_back(split ? 0.5*(v[2*n[k] + 1] + vc) : vc);
-                // Eqs. (18, 20)
-                ghostRho_.push_back(mass[el]/area[el]);
+                ghostRho_.push_back(rhoGhost);
                 ghostM_.push_back(split ? mass[el]/3 : mass[el]);
                 ghostH_.push_back(hg);
             }
