@@ -1129,7 +1129,29 @@ Foam::restartState::content Foam::spemMethod::state() const
 
 Foam::spemMethod::fastestFluid Foam::spemMethod::findFastestFluid() const
 {
+    // Compared by the squares, (|v|/c)^2, one square root at the end: the
+    // search visits every fluid particle and every fluid element's nodes
     fastestFluid f;
+    scalar mach2 = 0, speed2 = 0;
+    const auto keepFaster =
+        [&]
+        (
+            const scalar vx,
+            const scalar vy,
+            const scalar c,
+            const scalar x,
+            const scalar y,
+            const bool particle
+        )
+        {
+            const scalar v2 = vx*vx + vy*vy;
+            if (v2 > mach2*c*c)
+            {
+                mach2 = v2/(c*c);
+                speed2 = v2;
+                f = {0, 0, c, x, y, particle};
+            }
+        };
     if (particles_)
     {
         const sphFluid& p = *particles_;
@@ -1140,11 +1162,7 @@ Foam::spemMethod::fastestFluid Foam::spemMethod::findFastestFluid() const
         for (label i = 0; i < label(kind.size()); ++i)
         {
             if (kind[i] != particleSet::kind::fluid) continue;
-            const scalar speed = std::hypot(v[2*i], v[2*i + 1]);
-            if (speed/c > f.mach)
-            {
-                f = {speed/c, speed, c, x[2*i], x[2*i + 1], true};
-            }
+            keepFaster(v[2*i], v[2*i + 1], c, x[2*i], x[2*i + 1], true);
         }
     }
     if (elements_)
@@ -1164,15 +1182,16 @@ Foam::spemMethod::fastestFluid Foam::spemMethod::findFastestFluid() const
                 for (label k = 0; k < 3; ++k)
                 {
                     const label n = nodes[3*e + k];
-                    const scalar speed = std::hypot(v[2*n], v[2*n + 1]);
-                    if (speed/c > f.mach)
-                    {
-                        f = {speed/c, speed, c, x[2*n], x[2*n + 1], false};
-                    }
+                    keepFaster
+                    (
+                        v[2*n], v[2*n + 1], c, x[2*n], x[2*n + 1], false
+                    );
                 }
             }
         }
     }
+    f.mach = std::sqrt(mach2);
+    f.speed = std::sqrt(speed2);
     return f;
 }
 
