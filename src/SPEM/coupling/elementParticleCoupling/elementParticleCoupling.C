@@ -376,14 +376,14 @@ void Foam::elementParticleCoupling::setGhosts
         [&](const label el, scalar gx[3], scalar gy[3], scalar& hg)
         {
             const label* n = &nodes[3*el];
-            const scalar cx = (x[2*n[0]] + x[2*n[1]] + x[2*n[2]])/3;
-            const scalar cy = (x[2*n[0] + 1] + x[2*n[1] + 1] + x[2*n[2] + 1])/3;
+            scalar c[2];
+            centroid(el, c);
             if (split)
             {
                 for (label k = 0; k < 3; ++k)
                 {
-                    gx[k] = 0.5*(x[2*n[k]] + cx);
-                    gy[k] = 0.5*(x[2*n[k] + 1] + cy);
+                    gx[k] = 0.5*(x[2*n[k]] + c[0]);
+                    gy[k] = 0.5*(x[2*n[k] + 1] + c[1]);
                 }
                 hg =
                     smoothingLengthRatio_*refinedRadiusRatio_
@@ -391,8 +391,8 @@ void Foam::elementParticleCoupling::setGhosts
             }
             else
             {
-                gx[0] = cx;
-                gy[0] = cy;
+                gx[0] = c[0];
+                gy[0] = c[1];
                 hg = smoothingLengthRatio_*std::sqrt(area[el]);
             }
         };
