@@ -19,6 +19,7 @@ Foam::elementParticleCoupling::interfaceForceTypeNames
     {interfaceForceType::traction, "traction"},
     {interfaceForceType::balancedTraction, "balancedTraction"},
     {interfaceForceType::balancedParticles, "balancedParticles"},
+    {interfaceForceType::balancedFluid, "balancedFluid"},
 });
 
 
@@ -59,12 +60,12 @@ Foam::elementParticleCoupling::elementParticleCoupling
     const scalar refinedRadiusRatio
 )
 :
-    // Split ghosts: found by the pair reach, exchanged equal and opposite
+    // Exchanged equal and opposite; split ghosts found by the pair reach
     interfaceForce_
     (
         refinedRadiusRatio > 0
       ? interfaceForceType::balancedParticles
-      : interfaceForceType::traction
+      : interfaceForceType::balancedFluid
     ),
     ghostSearch_
     (
@@ -73,6 +74,7 @@ Foam::elementParticleCoupling::elementParticleCoupling
       : ghostSearchType::particleSupport
     ),
     imbalance_{0, 0},
+    spread_{0, 0},
     velocityCorrection_(readVelocityCorrection(schemesDict)),
     interfaceSuction_(true),
     smoothingLengthRatio_(smoothingLengthRatio),
@@ -164,6 +166,19 @@ void Foam::elementParticleCoupling::update
         interfaceNodes_.end()
     );
     nodePressure_.assign(elements.nNodes(), 0);
+    nodeReached_.assign(elements.nNodes(), 0);
+
+    // The nodes on a wall patch (balancedFluid)
+    wallNode_.assign(mesh.nPoints(), 0);
+    for (label s = 0; s < mesh.nSegments(); ++s)
+    {
+        if (patchTypes[mesh.segmentPatch()[s]] == patchType::freeSurface)
+        {
+            continue;
+        }
+        wallNode_[mesh.segments()[2*s]] = 1;
+        wallNode_[mesh.segments()[2*s + 1]] = 1;
+    }
 
     // The connected interfaces: segments that share a node, by union-find
     // over the interface nodes
@@ -646,6 +661,7 @@ void Foam::elementParticleCoupling::interfaceTraction
                 );
                 // No particle in reach: a free surface, or a hole
                 if (!(sumW > 0)) ++nUnreachedNodes_;
+                nodeReached_[n] = sumW > 0;
                 const scalar pn = sumW > 0 ? sumP/sumW : 0;
                 nodePressure_[n] = interfaceSuction_ ? pn : max(pn, scalar(0));
             }
@@ -924,6 +940,99 @@ void Foam::elementParticleCoupling::balanceParticles
 }
 
 
+void Foam::elementParticleCoupling::spreadImbalance
+(
+    elementModel& elements,
+    sphFluid& particles,
+    scalar added[2]
+)
+{
+    // D: what the traction and the ghosts' force on the particles leave
+    // over
+    const scalar* ghost = particles.ghostForce();
+    scalar D[2] = {added[0] - ghost[0], added[1] - ghost[1]};
+    const particleSet& ps = particles.particles();
+
+    // Less the part of the connected interfaces that meet a wall where
+    // particles reach it (a wall node of the interface with particles in
+    // reach; free-surface sides join an interface to walls far from any
+    // particle): the sum of T_s - R_s over their segments, R_s the
+    // particles' ghost forces shared to the segments as interfaceReaction
+    // shares them
+    const label nSegments = nInterfaceSegments();
+    componentAtWall_.assign(nComponents_, 0);
+    bool anyAtWall = false;
+    for (label s = 0; s < nSegments; ++s)
+    {
+        for (label k = 0; k < 2; ++k)
+        {
+            const label n = segments_[2*s + k];
+            if (wallNode_[n] && nodeReached_[n])
+            {
+                componentAtWall_[segmentComponent_[s]] = 1;
+                anyAtWall = true;
+            }
+        }
+    }
+    if (anyAtWall)
+    {
+        const std::vector<scalar>& aGhost = particles.ghostAccelerations();
+        reactionForce_.assign(2*nSegments, 0);
+        forEachInterfaceShare
+        (
+            elements, particles,
+            [&](const label i, const label s, const scalar w)
+            {
+                const scalar m = ps.mass()[i];
+                reactionForce_[2*s] -= w*m*aGhost[2*i];
+                reactionForce_[2*s + 1] -= w*m*aGhost[2*i + 1];
+            }
+        );
+        for (label s = 0; s < nSegments; ++s)
+        {
+            if (!componentAtWall_[segmentComponent_[s]]) continue;
+            D[0] -= segmentForce_[2*s] - reactionForce_[2*s];
+            D[1] -= segmentForce_[2*s + 1] - reactionForce_[2*s + 1];
+        }
+    }
+
+    // M: the fluid's mass that can move (fluid particles, and the nodes of
+    // the remaining fluid elements that are no solid's); each gets -D/M
+    const std::vector<scalar>& nodeMass = elements.nodeMass();
+    scalar M = 0;
+    for (label i = 0; i < ps.size(); ++i)
+    {
+        if (ps.kinds()[i] == particleSet::kind::fluid) M += ps.mass()[i];
+    }
+    for (label n = 0; n < elements.nNodes(); ++n)
+    {
+        if (!elements.solidNode(n)) M += nodeMass[n];
+    }
+    if (!(M > 0)) return;
+    spread_[0] = D[0];
+    spread_[1] = D[1];
+    const scalar a[2] = {-D[0]/M, -D[1]/M};
+    particleCorrection_.assign(2*ps.size(), 0);
+    for (label i = 0; i < ps.size(); ++i)
+    {
+        if (ps.kinds()[i] != particleSet::kind::fluid) continue;
+        particleCorrection_[2*i] = a[0];
+        particleCorrection_[2*i + 1] = a[1];
+    }
+    particles.addInterfaceAcceleration(particleCorrection_);
+    std::vector<scalar>& f = elements.externalForce();
+    for (label n = 0; n < elements.nNodes(); ++n)
+    {
+        if (elements.solidNode(n) || !(nodeMass[n] > 0)) continue;
+        for (label d = 0; d < 2; ++d)
+        {
+            f[2*n + d] += nodeMass[n]*a[d];
+            added[d] += nodeMass[n]*a[d];
+        }
+    }
+}
+
+
 void Foam::elementParticleCoupling::addSegmentForces
 (
     elementModel& elements,
@@ -973,6 +1082,7 @@ void Foam::elementParticleCoupling::beforeParticleEvaluate(couplingStep& s)
 void Foam::elementParticleCoupling::afterParticleEvaluate(couplingStep& s)
 {
     scalar added[2] = {0, 0};
+    spread_[0] = spread_[1] = 0;
     switch (interfaceForce_)
     {
         case interfaceForceType::interfaceReaction:
@@ -996,6 +1106,11 @@ void Foam::elementParticleCoupling::afterParticleEvaluate(couplingStep& s)
             interfaceTraction(*s.elements, *s.particles, segmentForce_);
             balanceParticles(*s.elements, *s.particles, segmentForce_);
             addSegmentForces(*s.elements, segmentForce_, added);
+            break;
+        case interfaceForceType::balancedFluid:
+            interfaceTraction(*s.elements, *s.particles, segmentForce_);
+            addSegmentForces(*s.elements, segmentForce_, added);
+            spreadImbalance(*s.elements, *s.particles, added);
             break;
     }
     for (int k = 0; k < 2; ++k)

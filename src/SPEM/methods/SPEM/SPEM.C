@@ -519,6 +519,15 @@ void Foam::spemMethods::SPEM::reportInterface(Ostream& os) const
         }
         os  << ", interface force imbalance = (" << d[0] << ' ' << d[1]
             << ')';
+        if
+        (
+            coupling_->interfaceForce()
+         == elementParticleCoupling::interfaceForceType::balancedFluid
+        )
+        {
+            const scalar* D = coupling_->spread();
+            os  << ", spread over the fluid = (" << D[0] << ' ' << D[1] << ')';
+        }
     }
     if (bodyElements_)
     {
