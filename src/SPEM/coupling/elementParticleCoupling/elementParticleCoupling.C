@@ -864,21 +864,12 @@ void Foam::elementParticleCoupling::balanceTraction
 }
 
 
-void Foam::elementParticleCoupling::balanceParticles
+void Foam::elementParticleCoupling::shareGhostForces
 (
     const elementModel& elements,
-    sphFluid& particles,
-    std::vector<scalar>& traction
+    const sphFluid& particles
 )
 {
-    // The particles' ghost forces shared to the segments as
-    // interfaceReaction shares them, reversed: R_s. The difference
-    // T_s - R_s is what the ghosts, an SPH sum, miss of the traction the
-    // elements get; summed over a connected interface (per segment it is
-    // noise that throws the particles about: see the header), the
-    // particles sharing its segments take its reverse in proportion to
-    // their shares, so that the exchange is equal and opposite and the
-    // elements keep eq. (25)'s load
     const particleSet& ps = particles.particles();
     const std::vector<scalar>& aGhost = particles.ghostAccelerations();
     const label nSegments = nInterfaceSegments();
@@ -900,6 +891,27 @@ void Foam::elementParticleCoupling::balanceParticles
         reactionForce_[2*sh.s + 1] -= sh.w*m*aGhost[2*sh.i + 1];
         shareSum_[sh.s] += sh.w;
     }
+}
+
+
+void Foam::elementParticleCoupling::balanceParticles
+(
+    const elementModel& elements,
+    sphFluid& particles,
+    std::vector<scalar>& traction
+)
+{
+    // The particles' ghost forces shared to the segments as
+    // interfaceReaction shares them, reversed: R_s. The difference
+    // T_s - R_s is what the ghosts, an SPH sum, miss of the traction the
+    // elements get; summed over a connected interface (per segment it is
+    // noise that throws the particles about: see the header), the
+    // particles sharing its segments take its reverse in proportion to
+    // their shares, so that the exchange is equal and opposite and the
+    // elements keep eq. (25)'s load
+    const particleSet& ps = particles.particles();
+    const label nSegments = nInterfaceSegments();
+    shareGhostForces(elements, particles);
     // Per connected interface c: D_c = sum_s (T_s - R_s) over the weight
     // of all its shares; an interface no particle shares has no ghost
     // force to balance: its traction (from particles in reach of its nodes
@@ -976,18 +988,7 @@ void Foam::elementParticleCoupling::spreadImbalance
     }
     if (anyAtWall)
     {
-        const std::vector<scalar>& aGhost = particles.ghostAccelerations();
-        reactionForce_.assign(2*nSegments, 0);
-        forEachInterfaceShare
-        (
-            elements, particles,
-            [&](const label i, const label s, const scalar w)
-            {
-                const scalar m = ps.mass()[i];
-                reactionForce_[2*s] -= w*m*aGhost[2*i];
-                reactionForce_[2*s + 1] -= w*m*aGhost[2*i + 1];
-            }
-        );
+        shareGhostForces(elements, particles);
         for (label s = 0; s < nSegments; ++s)
         {
             if (!componentAtWall_[segmentComponent_[s]]) continue;
