@@ -980,6 +980,31 @@ damBreakProfiles
 }
 
 
+//- A point farthest from the nearest point of another set, and that
+//  distance
+struct farthestPoint { double d = 0, x = 0, y = 0; };
+
+//- Replace far by the point of points farthest from its nearest point of
+//  other, if that one is farther
+void farthestFrom
+(
+    const std::vector<std::vector<double>>& points,
+    const std::vector<std::vector<double>>& other,
+    farthestPoint& far
+)
+{
+    for (const auto& pt : points)
+    {
+        double d = INFINITY;
+        for (const auto& o : other)
+        {
+            d = std::min(d, std::hypot(pt[0] - o[0], pt[1] - o[1]));
+        }
+        if (d > far.d) far = farthestPoint{d, pt[0], pt[1]};
+    }
+}
+
+
 //- The water's height on the back wall of a dam break: the highest point
 //  of a free-surface profile within two particle spacings dx of x = 0
 double backWallHeight
@@ -1044,28 +1069,10 @@ void damBreakSurfaces
         // The distance of each free-surface point (particle or element
         // node) of one run from the nearest of the other's, both ways: the
         // surfaces, faces included
-        double largest = 0, xLargest = 0, yLargest = 0;
-        const auto fromOther =
-            [&](const std::vector<std::vector<double>>& points,
-                const std::vector<std::vector<double>>& other)
-            {
-                for (const auto& pt : points)
-                {
-                    double d = INFINITY;
-                    for (const auto& o : other)
-                    {
-                        d = std::min(d, std::hypot(pt[0] - o[0], pt[1] - o[1]));
-                    }
-                    if (d > largest)
-                    {
-                        largest = d;
-                        xLargest = pt[0];
-                        yLargest = pt[1];
-                    }
-                }
-            };
-        fromOther(q, p);
-        fromOther(p, q);
+        farthestPoint far;
+        farthestFrom(q, p, far);
+        farthestFrom(p, q, far);
+        const double largest = far.d, xLargest = far.x, yLargest = far.y;
 
         // The water's height on the back wall against Martin and Moyce
         // (1952)
@@ -1214,29 +1221,18 @@ TEST(SpemValidation, damBreakSurfaceWithElementsKeepsToItsHalves)
             ASSERT_NEAR(spem[k].first, t, 1e-9);
             ASSERT_NEAR(elements[k].first, t, 1e-9);
             ASSERT_FALSE(spem[k].second.empty());
-            double largest = 0, xLargest = 0, yLargest = 0;
-            for (const auto& pt : spem[k].second)
-            {
-                double d = INFINITY;
-                for (const auto* twin : {&sph[k].second, &elements[k].second})
-                {
-                    for (const auto& o : *twin)
-                    {
-                        d = std::min(d, std::hypot(pt[0] - o[0], pt[1] - o[1]));
-                    }
-                }
-                if (d > largest)
-                {
-                    largest = d;
-                    xLargest = pt[0];
-                    yLargest = pt[1];
-                }
-            }
+            std::vector<std::vector<double>> halves = sph[k].second;
+            halves.insert
+            (
+                halves.end(), elements[k].second.begin(), elements[k].second.end()
+            );
+            farthestPoint far;
+            farthestFrom(spem[k].second, halves, far);
             char buf[64];
-            std::snprintf(buf, sizeof(buf), " %.1f", largest/dx);
+            std::snprintf(buf, sizeof(buf), " %.1f", far.d/dx);
             distances += buf;
-            EXPECT_LT(largest, 2*dx)
-                << "t = " << t << " at (" << xLargest << ' ' << yLargest << ")";
+            EXPECT_LT(far.d, 2*dx)
+                << "t = " << t << " at (" << far.x << ' ' << far.y << ")";
         }
         std::printf
         (
