@@ -301,6 +301,7 @@ std::vector<Foam::label> Foam::spemMethods::SPEM::trianglesNearBodies()
     const elementModel& em = *elements_;
     const std::vector<scalar>& x = em.positions();
     const std::vector<label>& nodes = em.elementNodes();
+    const std::vector<label>& triRegion = case_.mesh.triangleRegion();
     forAll(bodies, b)
     {
         const rigidBody& body = bodies[b];
@@ -332,7 +333,7 @@ std::vector<Foam::label> Foam::spemMethods::SPEM::trianglesNearBodies()
         };
         // The nodes in reach, each tested once (a node has about six
         // elements)
-        nodeInReach_.assign(em.nNodes(), 0);
+        nodesInReach_.clear();
         for (label n = 0; n < em.nNodes(); ++n)
         {
             // slide: the elements of the nodes on the body stay elements
@@ -348,23 +349,21 @@ std::vector<Foam::label> Foam::spemMethods::SPEM::trianglesNearBodies()
             {
                 continue;
             }
-            nodeInReach_[n] = !slide || nearParticle(px, py);
+            if (!slide || nearParticle(px, py)) nodesInReach_.push_back(n);
         }
-        for (label r = 0; r < em.regions().size(); ++r)
+        // Their fluid elements, through the node-element adjacency: a few
+        // per node instead of a pass over every element. An element with
+        // two nodes in reach comes twice (a set: trianglesToConvert)
+        const std::vector<label>& start = em.nodeElementStart();
+        const std::vector<label>& nodeElements = em.nodeElements();
+        for (const label n : nodesInReach_)
         {
-            if (!em.hasMaterial(r) || !em.material(r).isFluid()) continue;
-            const elementModel::region& reg = em.regions()[r];
-            for (label el = reg.elemBegin; el < reg.elemEnd; ++el)
+            for (label j = start[n]; j < start[n + 1]; ++j)
             {
+                const label el = nodeElements[j]/3;
+                const label t = em.elementTriangle()[el];
+                if (!em.material(triRegion[t]).isFluid()) continue;
                 const label* en = &nodes[3*el];
-                if
-                (
-                    !nodeInReach_[en[0]] && !nodeInReach_[en[1]]
-                 && !nodeInReach_[en[2]]
-                )
-                {
-                    continue;
-                }
                 if
                 (
                     slide
@@ -377,7 +376,7 @@ std::vector<Foam::label> Foam::spemMethods::SPEM::trianglesNearBodies()
                 {
                     continue;
                 }
-                near.push_back(em.elementTriangle()[el]);
+                near.push_back(t);
             }
         }
     }
