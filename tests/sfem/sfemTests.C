@@ -389,8 +389,12 @@ TEST(ESFEM, locateFindsWhatAPassOverEveryElementFindsWhileTheMeshMovesAndConvert
         some.push_back(tri);
         others.push_back(tri + 1);
     }
+    // (the grid of the last check, renumbered: no build)
+    const label buildsBeforeRemoval = em->locatorBuilds();
     em->removeTriangles(mesh, some);
     check("after removing a third of the triangles");
+    EXPECT_EQ(em->locatorBuilds(), buildsBeforeRemoval)
+        << "built again after a removal";
     // Put back and as many others out, with no query between: the same
     // element count, other elements (the topology version, not the count,
     // must tell the grid)

@@ -154,6 +154,40 @@ bool Foam::elementLocator::build
 }
 
 
+void Foam::elementLocator::renumber
+(
+    const std::vector<label>& oldToNew,
+    const label nElements,
+    const label versionBefore,
+    const label version
+)
+{
+    if (version_ != versionBefore || label(oldToNew.size()) != nElements_)
+    {
+        return;
+    }
+    // In place: a cell's kept elements move to the front of what is left,
+    // in their order (increasing old numbers map to increasing new ones)
+    label out = 0;
+    label begin = cellStart_[0];
+    for (std::size_t c = 0; c + 1 < cellStart_.size(); ++c)
+    {
+        const label end = cellStart_[c + 1];
+        cellStart_[c] = out;
+        for (label k = begin; k < end; ++k)
+        {
+            const label el = oldToNew[cellElements_[k]];
+            if (el >= 0) cellElements_[out++] = el;
+        }
+        begin = end;
+    }
+    cellStart_.back() = out;
+    cellElements_.resize(out);
+    nElements_ = nElements;
+    version_ = version;
+}
+
+
 bool Foam::elementLocator::contains
 (
     const std::vector<scalar>& x,

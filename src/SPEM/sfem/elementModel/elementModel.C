@@ -1421,6 +1421,7 @@ void Foam::elementModel::removeTriangles
             << "removeTriangles needs the mesh of construction"
             << exit(FatalError);
     }
+    const label versionBefore = topologyVersion_;
     ++topologyVersion_;
     for (const label t : triangles)
     {
@@ -1432,7 +1433,24 @@ void Foam::elementModel::removeTriangles
         }
         removedTriangle_[t] = true;
     }
+    // The probes' grid of the elements before: the elements left keep
+    // their order and their nodes, so it holds them renumbered
+    std::vector<label> oldTriangles;
+    if (locator_.version() == versionBefore) oldTriangles = elemTriangle_;
     build(mesh);
+    if (!oldTriangles.empty())
+    {
+        std::vector<label> newElement(mesh.nTriangles(), -1);
+        for (label el = 0; el < nElements(); ++el)
+        {
+            newElement[elemTriangle_[el]] = el;
+        }
+        for (label& e : oldTriangles) e = newElement[e];
+        locator_.renumber
+        (
+            oldTriangles, nElements(), versionBefore, topologyVersion_
+        );
+    }
 
     // Nodes without elements rest: no mass, no momentum. In the current
     // state only: advance() writes the other buffer whole, and until then
