@@ -512,6 +512,53 @@ void Foam::elementParticleCoupling::setGhosts
             return !nearFluid[label(fy)*gridNx + label(fx)];
         };
 
+    // The side of the box each node lies beyond by more than the largest
+    // reach of a ghost, kappa max(h_max, h of the largest fluid element),
+    // with a rounding margin (bits: left, below, right, above). The three
+    // nodes of an element beyond one side: so are its ghosts, which lie
+    // between them, and none reaches a particle. A byte per node, once,
+    // instead of six coordinates per element (most elements)
+    scalar largest[4] = {0, 0, 0, 0};
+    for (label r = 0; r < elements.regions().size(); ++r)
+    {
+        if (!elements.hasMaterial(r) || !elements.material(r).isFluid())
+        {
+            continue;
+        }
+        // Four maxima: no chain of dependent comparisons
+        const label end = elements.regions()[r].elemEnd;
+        label el = elements.regions()[r].elemBegin;
+        for (; el + 3 < end; el += 4)
+        {
+            for (label k = 0; k < 4; ++k)
+            {
+                largest[k] = max(largest[k], area[el + k]);
+            }
+        }
+        for (; el < end; ++el) largest[0] = max(largest[0], area[el]);
+    }
+    const scalar largestArea =
+        max(max(largest[0], largest[1]), max(largest[2], largest[3]));
+    {
+        const scalar d =
+            kappa*max(hFluid, smoothingLengthRatio_*std::sqrt(largestArea))
+          + boxSlack;
+        const scalar left = box[0] - d, below = box[1] - d;
+        const scalar right = box[2] + d, above = box[3] + d;
+        const label nNodes = elements.nNodes();
+        nodeBeyond_.resize(nNodes);
+        unsigned char* beyond = nodeBeyond_.data();
+        const scalar* xn = x.data();
+        for (label n = 0; n < nNodes; ++n)
+        {
+            const scalar px = xn[2*n], py = xn[2*n + 1];
+            beyond[n] =
+                (px < left) | (py < below) << 1 | (px > right) << 2
+              | (py > above) << 3;
+        }
+    }
+    const unsigned char* beyond = nodeBeyond_.data();
+
     for (label r = 0; r < elements.regions().size(); ++r)
     {
         if (!elements.hasMaterial(r) || !elements.material(r).isFluid())
@@ -530,27 +577,10 @@ void Foam::elementParticleCoupling::setGhosts
         #pragma omp parallel for schedule(static) if(end - begin > minParallelParticles)
         for (label el = begin; el < end; ++el)
         {
-            // All three nodes beyond the box by more than the reach: so
-            // are the ghosts, which lie between them (with a rounding
-            // margin; reaches stays 0)
+            // All three nodes beyond one side of the box (reaches stays 0)
             {
                 const label* n = &nodes[3*el];
-                const scalar x0 = x[2*n[0]], x1 = x[2*n[1]], x2 = x[2*n[2]];
-                const scalar y0 = x[2*n[0] + 1], y1 = x[2*n[1] + 1];
-                const scalar y2 = x[2*n[2] + 1];
-                const scalar d =
-                    kappa*max(hFluid, smoothingLengthRatio_*std::sqrt(area[el]))
-                  + boxSlack;
-                if
-                (
-                    max(x0, max(x1, x2)) < box[0] - d
-                 || min(x0, min(x1, x2)) > box[2] + d
-                 || max(y0, max(y1, y2)) < box[1] - d
-                 || min(y0, min(y1, y2)) > box[3] + d
-                )
-                {
-                    continue;
-                }
+                if (beyond[n[0]] & beyond[n[1]] & beyond[n[2]]) continue;
             }
             scalar gx[3], gy[3], hg;
             candidates(el, gx, gy, hg);
