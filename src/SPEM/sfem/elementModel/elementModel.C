@@ -191,11 +191,13 @@ std::vector<Foam::label> Foam::elementModel::orderElements
         if (!removedTriangle_[t]) elemTriangle_.push_back(t);
     }
     const label nTri = label(elemTriangle_.size());
-    std::stable_sort
-    (
-        elemTriangle_.begin(), elemTriangle_.end(),
-        [&](label a, label b) { return triRegion[a] < triRegion[b]; }
-    );
+    // (A mesh numbered region by region is in order already: no sort)
+    const auto byRegion =
+        [&](label a, label b) { return triRegion[a] < triRegion[b]; };
+    if (!std::is_sorted(elemTriangle_.begin(), elemTriangle_.end(), byRegion))
+    {
+        std::stable_sort(elemTriangle_.begin(), elemTriangle_.end(), byRegion);
+    }
     std::vector<label> triElem(nMeshTri, -1);
     for (label e = 0; e < nTri; ++e) triElem[elemTriangle_[e]] = e;
 
