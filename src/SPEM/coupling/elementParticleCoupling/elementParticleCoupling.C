@@ -114,7 +114,6 @@ void Foam::elementParticleCoupling::update
 )
 {
     const std::vector<label>& tri = mesh.triangles();
-    const std::vector<label>& triRegion = mesh.triangleRegion();
     const std::vector<label>& triEdges = mesh.triangleEdges();
     const std::vector<label>& edgeTri = mesh.edgeTriangles();
 
@@ -125,37 +124,60 @@ void Foam::elementParticleCoupling::update
         edgePatch[mesh.segmentEdge()[s]] = mesh.segmentPatch()[s];
     }
 
-    auto fluidElement = [&](const label t)
+    // The sides that can be open: a fluid element's side that is a
+    // smoothing domain of its own has no element of its region across it
+    // (the mesh's boundary, a removed triangle, another region). A pass
+    // over the domains finds them, not one over every triangle's sides;
+    // sorted as (triangle, side), the order of such a pass
+    std::vector<label>& sides = sideScratch_;
+    sides.clear();
     {
-        return
-            t >= 0 && !elements.removed(t)
-         && elements.material(triRegion[t]).isFluid();
-    };
+        const std::vector<label>& domainElems = elements.domainElements();
+        const std::vector<label>& elemDomains = elements.elementDomains();
+        const std::vector<label>& elemTri = elements.elementTriangle();
+        for (label r = 0; r < elements.regions().size(); ++r)
+        {
+            if (!elements.hasMaterial(r) || !elements.material(r).isFluid())
+            {
+                continue;
+            }
+            const elementModel::region& reg = elements.regions()[r];
+            for (label d = reg.domainBegin; d < reg.domainEnd; ++d)
+            {
+                if (domainElems[2*d + 1] >= 0) continue;
+                const label el = domainElems[2*d];
+                for (label i = 0; i < 3; ++i)
+                {
+                    if (elemDomains[3*el + i] == d)
+                    {
+                        sides.push_back(3*elemTri[el] + i);
+                    }
+                }
+            }
+        }
+        std::sort(sides.begin(), sides.end());
+    }
 
     segments_.clear();
-    for (label t = 0; t < mesh.nTriangles(); ++t)
+    for (const label side : sides)
     {
-        if (!fluidElement(t)) continue;
-        for (label i = 0; i < 3; ++i)
+        const label t = side/3, i = side % 3;
+        const label k = triEdges[3*t + i];
+        const label other = edgeTri[2*k] == t ? edgeTri[2*k + 1] : edgeTri[2*k];
+        bool open;
+        if (other < 0)
         {
-            const label k = triEdges[3*t + i];
-            const label other =
-                edgeTri[2*k] == t ? edgeTri[2*k + 1] : edgeTri[2*k];
-            bool open;
-            if (other < 0)
-            {
-                open = patchTypes[edgePatch[k]] == patchType::freeSurface;
-            }
-            else
-            {
-                open = elements.removed(other);
-            }
-            if (!open) continue;
-            // Edge i joins nodes i and i+1 of the counter-clockwise
-            // triangle: the element is on its left
-            segments_.push_back(tri[3*t + i]);
-            segments_.push_back(tri[3*t + (i + 1) % 3]);
+            open = patchTypes[edgePatch[k]] == patchType::freeSurface;
         }
+        else
+        {
+            open = elements.removed(other);
+        }
+        if (!open) continue;
+        // Edge i joins nodes i and i+1 of the counter-clockwise triangle:
+        // the element is on its left
+        segments_.push_back(tri[3*t + i]);
+        segments_.push_back(tri[3*t + (i + 1) % 3]);
     }
 
     interfaceNodes_ = segments_;
