@@ -1050,16 +1050,37 @@ void Foam::elementParticleCoupling::spreadImbalance
     }
 
     // M: the fluid's mass that can move (fluid particles, and the nodes of
-    // the remaining fluid elements that are no solid's); each gets -D/M
+    // the remaining fluid elements that are no solid's); each gets -D/M.
+    // The sum over the nodes continues the particles' sum: the same as
+    // the last step's if that started from the same value and the
+    // elements are the same (a pass over every node less)
     const std::vector<scalar>& nodeMass = elements.nodeMass();
     scalar M = 0;
     for (label i = 0; i < ps.size(); ++i)
     {
         if (ps.kinds()[i] == particleSet::kind::fluid) M += ps.mass()[i];
     }
-    for (label n = 0; n < elements.nNodes(); ++n)
+    if
+    (
+        M == spreadParticleMass_
+     && elements.topologyVersion() == spreadVersion_
+    )
     {
-        if (!elements.solidNode(n)) M += nodeMass[n];
+        M = spreadMass_;
+    }
+    else
+    {
+        spreadParticleMass_ = M;
+        scalar nodes = 0;
+        for (label n = 0; n < elements.nNodes(); ++n)
+        {
+            if (elements.solidNode(n)) continue;
+            M += nodeMass[n];
+            nodes += nodeMass[n];
+        }
+        spreadMass_ = M;
+        spreadNodeMass_ = nodes;
+        spreadVersion_ = elements.topologyVersion();
     }
     if (!(M > 0)) return;
     spread_[0] = D[0];
@@ -1073,16 +1094,17 @@ void Foam::elementParticleCoupling::spreadImbalance
         particleCorrection_[2*i + 1] = a[1];
     }
     particles.addInterfaceAcceleration(particleCorrection_);
+    // The nodes' share, and what it adds to the exchange's sum (for the
+    // reported imbalance: the nodes' mass times a, not node by node)
     std::vector<scalar>& f = elements.externalForce();
     for (label n = 0; n < elements.nNodes(); ++n)
     {
         if (elements.solidNode(n) || !(nodeMass[n] > 0)) continue;
-        for (label d = 0; d < 2; ++d)
-        {
-            f[2*n + d] += nodeMass[n]*a[d];
-            added[d] += nodeMass[n]*a[d];
-        }
+        f[2*n] += nodeMass[n]*a[0];
+        f[2*n + 1] += nodeMass[n]*a[1];
     }
+    added[0] += spreadNodeMass_*a[0];
+    added[1] += spreadNodeMass_*a[1];
 }
 
 
