@@ -1442,12 +1442,15 @@ void Foam::elementModel::removeTriangles
     build(mesh);
     if (!oldTriangles.empty())
     {
-        std::vector<label> newElement(mesh.nTriangles(), -1);
-        for (label el = 0; el < nElements(); ++el)
+        // The new elements are the old ones less the removed, in the same
+        // order: one walk along both lists numbers them
+        label next = 0;
+        for (label& e : oldTriangles)
         {
-            newElement[elemTriangle_[el]] = el;
+            const bool kept =
+                next < nElements() && elemTriangle_[next] == e;
+            e = kept ? next++ : -1;
         }
-        for (label& e : oldTriangles) e = newElement[e];
         locator_.renumber
         (
             oldTriangles, nElements(), versionBefore, topologyVersion_
