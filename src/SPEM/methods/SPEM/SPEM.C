@@ -234,6 +234,14 @@ void Foam::spemMethods::SPEM::setupConversion()
         )
     );
     conversion_->describe(Info);
+    findOpenStructureFaces();
+    if (!openStructureFaces_.empty())
+    {
+        Info<< "    structures: fluid elements within "
+            << conversion_->bodyReach()*bodyReach_ << " m in front of the "
+            << openStructureFaces_.size()/3 << " open faces of the solid"
+            << " regions become particles" << nl;
+    }
     if (restartConversions()) return;
 
     // The preset particle regions, not the triangles taken out already:
@@ -384,6 +392,134 @@ std::vector<Foam::label> Foam::spemMethods::SPEM::trianglesNearBodies()
 }
 
 
+void Foam::spemMethods::SPEM::findOpenStructureFaces()
+{
+    openStructureFaces_.clear();
+    const triMesh& mesh = case_.mesh;
+    const elementModel& em = *elements_;
+    const std::vector<label>& tri = mesh.triangles();
+    const std::vector<label>& triRegion = mesh.triangleRegion();
+    const std::vector<label>& edges = mesh.edges();
+    const std::vector<label>& edgeTri = mesh.edgeTriangles();
+
+    // The patch of each boundary edge (-1: none)
+    std::vector<label> edgePatch(mesh.nEdges(), -1);
+    for (label s = 0; s < mesh.nSegments(); ++s)
+    {
+        edgePatch[mesh.segmentEdge()[s]] = mesh.segmentPatch()[s];
+    }
+    const auto solid = [&](const label t)
+    {
+        return
+            t >= 0 && em.hasMaterial(triRegion[t])
+         && !em.material(triRegion[t]).isFluid();
+    };
+    for (label k = 0; k < mesh.nEdges(); ++k)
+    {
+        for (label side = 0; side < 2; ++side)
+        {
+            const label t = edgeTri[2*k + side];
+            if (!solid(t)) continue;
+            const label other = edgeTri[2*k + 1 - side];
+            const bool open =
+                other < 0
+              ? edgePatch[k] >= 0
+             && case_.patchTypes[edgePatch[k]] == patchType::freeSurface
+              : !em.hasMaterial(triRegion[other]);
+            if (!open) continue;
+            const label a = edges[2*k], b = edges[2*k + 1];
+            label c = -1;
+            for (label i = 0; i < 3; ++i)
+            {
+                const label n = tri[3*t + i];
+                if (n != a && n != b) c = n;
+            }
+            openStructureFaces_.push_back(a);
+            openStructureFaces_.push_back(b);
+            openStructureFaces_.push_back(c);
+        }
+    }
+}
+
+
+std::vector<Foam::label> Foam::spemMethods::SPEM::trianglesNearStructures()
+{
+    std::vector<label> near;
+    const label nFaces = label(openStructureFaces_.size()/3);
+    if (nFaces == 0 || !conversion_) return near;
+
+    const elementModel& em = *elements_;
+    const std::vector<scalar>& x = em.positions();
+    const label* face = openStructureFaces_.data();
+    const scalar reach = conversion_->bodyReach()*bodyReach_;
+
+    // The faces' box widened by the reach: most nodes need no face test
+    constexpr scalar big = std::numeric_limits<scalar>::max();
+    scalar box[4] = {big, big, -big, -big};
+    for (label f = 0; f < nFaces; ++f)
+    {
+        for (label i = 0; i < 2; ++i)
+        {
+            const label n = face[3*f + i];
+            box[0] = std::min(box[0], x[2*n] - reach);
+            box[1] = std::min(box[1], x[2*n + 1] - reach);
+            box[2] = std::max(box[2], x[2*n] + reach);
+            box[3] = std::max(box[3], x[2*n + 1] + reach);
+        }
+    }
+    // A node within the reach of a face, on its open side (in front of
+    // the line through it, away from the solid's third node)
+    const auto inReach = [&](const scalar px, const scalar py)
+    {
+        for (label f = 0; f < nFaces; ++f)
+        {
+            const scalar* a = &x[2*face[3*f]];
+            const scalar* b = &x[2*face[3*f + 1]];
+            const scalar* c = &x[2*face[3*f + 2]];
+            const scalar ex = b[0] - a[0], ey = b[1] - a[1];
+            const scalar e2 = ex*ex + ey*ey;
+            if (!(e2 > 0)) continue;
+            // Normal ey, -ex, turned away from the solid
+            const scalar side = ey*(c[0] - a[0]) - ex*(c[1] - a[1]);
+            const scalar front = ey*(px - a[0]) - ex*(py - a[1]);
+            if (!(front*side < 0)) continue;
+            const scalar t = std::min
+            (
+                scalar(1),
+                std::max(scalar(0), (ex*(px - a[0]) + ey*(py - a[1]))/e2)
+            );
+            if (sqr(px - a[0] - t*ex) + sqr(py - a[1] - t*ey) < sqr(reach))
+            {
+                return true;
+            }
+        }
+        return false;
+    };
+
+    const std::vector<label>& start = em.nodeElementStart();
+    const std::vector<label>& nodeElements = em.nodeElements();
+    const std::vector<label>& triRegion = case_.mesh.triangleRegion();
+    for (label n = 0; n < em.nNodes(); ++n)
+    {
+        // Nodes of fluid elements only: a solid's own, or one left without
+        // elements, is none
+        if (em.solidNode(n) || start[n] == start[n + 1]) continue;
+        const scalar px = x[2*n], py = x[2*n + 1];
+        if (px < box[0] || px > box[2] || py < box[1] || py > box[3])
+        {
+            continue;
+        }
+        if (!inReach(px, py)) continue;
+        for (label j = start[n]; j < start[n + 1]; ++j)
+        {
+            const label t = em.elementTriangle()[nodeElements[j]/3];
+            if (em.material(triRegion[t]).isFluid()) near.push_back(t);
+        }
+    }
+    return near;
+}
+
+
 // * * * * * * * * * * * * * * * * Constructors  * * * * * * * * * * * * * * //
 
 Foam::spemMethods::SPEM::SPEM
@@ -484,12 +620,24 @@ bool Foam::spemMethods::SPEM::evaluate()
     if
     (
         conversion_
-     && (conversion_->criterion().type() != "none" || !case_.bodies.empty())
+     && (
+            conversion_->criterion().type() != "none"
+         || !case_.bodies.empty() || !openStructureFaces_.empty()
+        )
     )
     {
         const costBreakdown::scope timed(cost_, costBreakdown::conversion);
+        std::vector<label> forced = trianglesNearBodies();
+        if (!openStructureFaces_.empty())
+        {
+            const std::vector<label> nearStructures = trianglesNearStructures();
+            forced.insert
+            (
+                forced.end(), nearStructures.begin(), nearStructures.end()
+            );
+        }
         const std::vector<label> triangles =
-            conversion_->trianglesToConvert(*elements_, trianglesNearBodies());
+            conversion_->trianglesToConvert(*elements_, forced);
         if (!triangles.empty()) convert(triangles);
     }
     return spemMethod::evaluate();
