@@ -402,12 +402,6 @@ void Foam::spemMethods::SPEM::findOpenStructureFaces()
     const std::vector<label>& edges = mesh.edges();
     const std::vector<label>& edgeTri = mesh.edgeTriangles();
 
-    // The patch of each boundary edge (-1: none)
-    std::vector<label> edgePatch(mesh.nEdges(), -1);
-    for (label s = 0; s < mesh.nSegments(); ++s)
-    {
-        edgePatch[mesh.segmentEdge()[s]] = mesh.segmentPatch()[s];
-    }
     const auto solid = [&](const label t)
     {
         return
@@ -420,13 +414,11 @@ void Foam::spemMethods::SPEM::findOpenStructureFaces()
         {
             const label t = edgeTri[2*k + side];
             if (!solid(t)) continue;
+            // Open: the other side is a void region's triangle (a side on
+            // the mesh's boundary faces nothing the fluid can cross the
+            // mesh to: a plate's underside on a free-surface patch)
             const label other = edgeTri[2*k + 1 - side];
-            const bool open =
-                other < 0
-              ? edgePatch[k] >= 0
-             && case_.patchTypes[edgePatch[k]] == patchType::freeSurface
-              : !em.hasMaterial(triRegion[other]);
-            if (!open) continue;
+            if (other < 0 || em.hasMaterial(triRegion[other])) continue;
             const label a = edges[2*k], b = edges[2*k + 1];
             label c = -1;
             for (label i = 0; i < 3; ++i)
