@@ -159,15 +159,7 @@ bool Foam::wallContact::correctStructures
         {
             if (!q.wall || !(q.signedDistance > 0))
             {
-                // Inside: the disc without boundary; beside an open edge:
-                // the half-way to the nearest wall, while an edge stays
-                // within reach (a margin for the distances' round-off)
-                const scalar d = std::abs(q.signedDistance);
-                const scalar inside = q.signedDistance < 0 ? d : 0;
-                const scalar open =
-                    q.wall
-                  ? 0 : min(0.5*(wallDistance - d), tank_.reach() - d);
-                const scalar clearance = (1 - 1e-9)*max(inside, open);
+                const scalar clearance = tank_.clearance(q, wallDistance);
                 clearanceSqr_[i] = clearance > 0 ? clearance*clearance : 0;
                 continue;
             }
