@@ -512,6 +512,112 @@ std::vector<Foam::label> Foam::spemMethods::SPEM::trianglesNearStructures()
 }
 
 
+std::vector<Foam::label> Foam::spemMethods::SPEM::trianglesBehindWalls()
+{
+    std::vector<label> behind;
+    if (!walls_) return behind;
+    const elementModel& em = *elements_;
+    // The boundary sides of the fluid elements: the smoothing domains of
+    // one element; a side's nodes are the element's two other than the
+    // one opposite it (side i of mesh triangle t is edge triangleEdges[3t
+    // + i])
+    if (em.topologyVersion() != fluidBoundaryVersion_)
+    {
+        fluidBoundaryVersion_ = em.topologyVersion();
+        fluidBoundaryNodes_.clear();
+        const triMesh& mesh = case_.mesh;
+        const std::vector<label>& edges = mesh.edges();
+        const std::vector<label>& triEdges = mesh.triangleEdges();
+        const std::vector<label>& domains = em.elementDomains();
+        const std::vector<label>& domainElems = em.domainElements();
+        std::vector<char> on(em.nNodes(), 0);
+        for (label r = 0; r < em.regions().size(); ++r)
+        {
+            if (!em.hasMaterial(r) || !em.material(r).isFluid()) continue;
+            const elementModel::region& reg = em.regions()[r];
+            for (label el = reg.elemBegin; el < reg.elemEnd; ++el)
+            {
+                const label t = em.elementTriangle()[el];
+                for (label i = 0; i < 3; ++i)
+                {
+                    if (domainElems[2*domains[3*el + i] + 1] >= 0) continue;
+                    const label k = triEdges[3*t + i];
+                    on[edges[2*k]] = on[edges[2*k + 1]] = 1;
+                }
+            }
+        }
+        const std::vector<elementModel::constraint>& constraint =
+            em.constraints();
+        for (label n = 0; n < em.nNodes(); ++n)
+        {
+            if
+            (
+                on[n] && !em.solidNode(n)
+             && constraint[n] == elementModel::constraint::free
+            )
+            {
+                fluidBoundaryNodes_.push_back(n);
+            }
+        }
+        nodeLookedUpAt_.resize(2*em.nNodes(), 0);
+        nodeClearanceSqr_.resize(em.nNodes(), 0);
+    }
+
+    // Each looked up again only once it has moved by its clearance
+    // (tankBoundary::clearance), as wallContact does for structure nodes
+    const tankBoundary& tank = *walls_;
+    const std::vector<scalar>& x = em.positions();
+    tankBoundary::nearestPoint q;
+    for (const label n : fluidBoundaryNodes_)
+    {
+        const scalar px = x[2*n], py = x[2*n + 1];
+        if
+        (
+            sqr(px - nodeLookedUpAt_[2*n]) + sqr(py - nodeLookedUpAt_[2*n + 1])
+          < nodeClearanceSqr_[n]
+        )
+        {
+            continue;
+        }
+        nodeLookedUpAt_[2*n] = px;
+        nodeLookedUpAt_[2*n + 1] = py;
+        nodeClearanceSqr_[n] = 0;
+        scalar wallDistance;
+        if (tank.nearest(px, py, q, &wallDistance))
+        {
+            if (!q.wall || !(q.signedDistance > 0))
+            {
+                nodeClearanceSqr_[n] = sqr(tank.clearance(q, wallDistance));
+                continue;
+            }
+            // Grazing: a node that touches a wall by less than half a
+            // particle spacing (damBreak: 10 um, at its back wall's foot)
+            // is left to the distortion criterion
+            if (q.signedDistance < 0.5*fluidSpacing_) continue;
+        }
+        else if (!tank.outside(px, py))
+        {
+            // Deep inside: every boundary edge at least reach away
+            nodeClearanceSqr_[n] = sqr((1 - 1e-9)*tank.reach());
+            continue;
+        }
+        // Behind a wall (within reach or farther): its fluid elements
+        const std::vector<label>& start = em.nodeElementStart();
+        const std::vector<label>& nodeElements = em.nodeElements();
+        for (label j = start[n]; j < start[n + 1]; ++j)
+        {
+            const label el = nodeElements[j]/3;
+            const label t = em.elementTriangle()[el];
+            if (em.material(case_.mesh.triangleRegion()[t]).isFluid())
+            {
+                behind.push_back(t);
+            }
+        }
+    }
+    return behind;
+}
+
+
 // * * * * * * * * * * * * * * * * Constructors  * * * * * * * * * * * * * * //
 
 Foam::spemMethods::SPEM::SPEM
@@ -533,7 +639,8 @@ Foam::spemMethods::SPEM::SPEM
 :
     spemMethod(c),
     bodyReach_(0),
-    bodyContact_(0)
+    bodyContact_(0),
+    fluidBoundaryVersion_(-1)
 {
     refinedRadiusRatio_ = refinedRadiusRatio;
     const dictionary& conversionDict = c.schemes.subOrEmptyDict("conversion");
@@ -607,6 +714,14 @@ bool Foam::spemMethods::SPEM::evaluate()
 {
     // What a failure of this evaluation undoes (revertToLastGood())
     recordCheckpoint();
+    // Fluid elements that the last step took behind a wall (timed with the
+    // elements: a look at their boundary nodes' motion, every step)
+    std::vector<label> behindWalls;
+    if (conversion_)
+    {
+        const costBreakdown::scope timed(cost_, costBreakdown::elements);
+        behindWalls = trianglesBehindWalls();
+    }
     // Nothing to check without a distortion criterion or bodies near which
     // elements convert: not even timed (see costBreakdown)
     if
@@ -615,11 +730,13 @@ bool Foam::spemMethods::SPEM::evaluate()
      && (
             conversion_->criterion().type() != "none"
          || !case_.bodies.empty() || !openStructureFaces_.empty()
+         || !behindWalls.empty()
         )
     )
     {
         const costBreakdown::scope timed(cost_, costBreakdown::conversion);
         std::vector<label> forced = trianglesNearBodies();
+        forced.insert(forced.end(), behindWalls.begin(), behindWalls.end());
         if (!openStructureFaces_.empty())
         {
             const std::vector<label> nearStructures = trianglesNearStructures();
