@@ -126,37 +126,9 @@ void Foam::elementParticleCoupling::update
 
     // The sides that can be open: a fluid element's side that is a
     // smoothing domain of its own has no element of its region across it
-    // (the mesh's boundary, a removed triangle, another region). A pass
-    // over the domains finds them, not one over every triangle's sides;
-    // sorted as (triangle, side), the order of such a pass
+    // (a pass over the domains, not one over every triangle's sides)
     std::vector<label>& sides = sideScratch_;
-    sides.clear();
-    {
-        const std::vector<label>& domainElems = elements.domainElements();
-        const std::vector<label>& elemDomains = elements.elementDomains();
-        const std::vector<label>& elemTri = elements.elementTriangle();
-        for (label r = 0; r < elements.regions().size(); ++r)
-        {
-            if (!elements.hasMaterial(r) || !elements.material(r).isFluid())
-            {
-                continue;
-            }
-            const elementModel::region& reg = elements.regions()[r];
-            for (label d = reg.domainBegin; d < reg.domainEnd; ++d)
-            {
-                if (domainElems[2*d + 1] >= 0) continue;
-                const label el = domainElems[2*d];
-                for (label i = 0; i < 3; ++i)
-                {
-                    if (elemDomains[3*el + i] == d)
-                    {
-                        sides.push_back(3*elemTri[el] + i);
-                    }
-                }
-            }
-        }
-        std::sort(sides.begin(), sides.end());
-    }
+    elements.fluidBoundarySides(sides);
 
     segments_.clear();
     for (const label side : sides)

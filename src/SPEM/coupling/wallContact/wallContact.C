@@ -40,6 +40,7 @@ Foam::wallContact::wallContact
 )
 :
     tank_(tank),
+    lookups_(tank),
     structureForce_{0, 0},
     bodyForce_(2*bodies.size(), 0),
     nNodeContacts_(0),
@@ -66,8 +67,7 @@ Foam::wallContact::wallContact
                 nodes_.push_back(n);
             }
         }
-        lookedUpAt_.assign(2*nodes_.size(), 0);
-        clearanceSqr_.assign(nodes_.size(), 0);
+        lookups_.resize(label(nodes_.size()));
     }
 
     forAll(bodies, b)
@@ -148,21 +148,10 @@ bool Foam::wallContact::correctStructures
     {
         const label n = nodes_[i];
         const scalar px = x[2*n], py = x[2*n + 1];
-        const scalar dx = px - lookedUpAt_[2*i];
-        const scalar dy = py - lookedUpAt_[2*i + 1];
-        if (dx*dx + dy*dy < clearanceSqr_[i]) continue;
-        lookedUpAt_[2*i] = px;
-        lookedUpAt_[2*i + 1] = py;
-        clearanceSqr_[i] = 0;
-        scalar wallDistance;
-        if (tank_.nearest(px, py, q, &wallDistance))
+        const wallLookups::place at = lookups_.lookUp(label(i), px, py, q);
+        if (at == wallLookups::place::clear) continue;
+        if (at == wallLookups::place::behind)
         {
-            if (!q.wall || !(q.signedDistance > 0))
-            {
-                const scalar clearance = tank_.clearance(q, wallDistance);
-                clearanceSqr_[i] = clearance > 0 ? clearance*clearance : 0;
-                continue;
-            }
             ++nNodeContacts_;
             elements.setPosition(n, q.x, q.y);
             const scalar vn = v[2*n]*q.nx + v[2*n + 1]*q.ny;
@@ -178,17 +167,7 @@ bool Foam::wallContact::correctStructures
             }
             continue;
         }
-        // Nothing within reach: deep inside, or far behind a wall. Deep
-        // inside, every boundary edge is at least reach away: the node
-        // moves by that before it can touch one (a plate's nodes above its
-        // bottom face, most of the plate, looked up at every sub-step
-        // before)
-        if (!tank_.outside(px, py))
-        {
-            const scalar clearance = (1 - 1e-9)*tank_.reach();
-            clearanceSqr_[i] = clearance*clearance;
-            continue;
-        }
+        // Farther than the tank's reach behind a wall
         std::ostringstream os;
         os  << "structure node " << n << " at (" << px << ' ' << py
             << ") went more than " << tank_.reach() << " m through a wall"

@@ -296,6 +296,28 @@ bool Foam::spemMethods::SPEM::particlesNextTo
 }
 
 
+template<class Fn>
+void Foam::spemMethods::SPEM::forEachFluidElementOf
+(
+    const label n,
+    Fn&& fn
+) const
+{
+    // Through the node-element adjacency: a few per node instead of a pass
+    // over every element
+    const elementModel& em = *elements_;
+    const std::vector<label>& start = em.nodeElementStart();
+    const std::vector<label>& nodeElements = em.nodeElements();
+    const std::vector<label>& triRegion = case_.mesh.triangleRegion();
+    for (label j = start[n]; j < start[n + 1]; ++j)
+    {
+        const label el = nodeElements[j]/3;
+        const label t = em.elementTriangle()[el];
+        if (em.material(triRegion[t]).isFluid()) fn(el, t);
+    }
+}
+
+
 std::vector<Foam::label> Foam::spemMethods::SPEM::trianglesNearBodies()
 {
     std::vector<label> near;
@@ -309,7 +331,6 @@ std::vector<Foam::label> Foam::spemMethods::SPEM::trianglesNearBodies()
     const elementModel& em = *elements_;
     const std::vector<scalar>& x = em.positions();
     const std::vector<label>& nodes = em.elementNodes();
-    const std::vector<label>& triRegion = case_.mesh.triangleRegion();
     forAll(bodies, b)
     {
         const rigidBody& body = bodies[b];
@@ -359,18 +380,12 @@ std::vector<Foam::label> Foam::spemMethods::SPEM::trianglesNearBodies()
             }
             if (!slide || nearParticle(px, py)) nodesInReach_.push_back(n);
         }
-        // Their fluid elements, through the node-element adjacency: a few
-        // per node instead of a pass over every element. An element with
-        // two nodes in reach comes twice (a set: trianglesToConvert)
-        const std::vector<label>& start = em.nodeElementStart();
-        const std::vector<label>& nodeElements = em.nodeElements();
+        // Their fluid elements. An element with two nodes in reach comes
+        // twice (a set: trianglesToConvert)
         for (const label n : nodesInReach_)
         {
-            for (label j = start[n]; j < start[n + 1]; ++j)
+            forEachFluidElementOf(n, [&](const label el, const label t)
             {
-                const label el = nodeElements[j]/3;
-                const label t = em.elementTriangle()[el];
-                if (!em.material(triRegion[t]).isFluid()) continue;
                 const label* en = &nodes[3*el];
                 if
                 (
@@ -382,10 +397,10 @@ std::vector<Foam::label> Foam::spemMethods::SPEM::trianglesNearBodies()
                     )
                 )
                 {
-                    continue;
+                    return;
                 }
                 near.push_back(t);
-            }
+            });
         }
     }
     return near;
@@ -489,8 +504,6 @@ std::vector<Foam::label> Foam::spemMethods::SPEM::trianglesNearStructures()
     };
 
     const std::vector<label>& start = em.nodeElementStart();
-    const std::vector<label>& nodeElements = em.nodeElements();
-    const std::vector<label>& triRegion = case_.mesh.triangleRegion();
     for (label n = 0; n < em.nNodes(); ++n)
     {
         // Nodes of fluid elements only: a solid's own, or one left without
@@ -502,11 +515,10 @@ std::vector<Foam::label> Foam::spemMethods::SPEM::trianglesNearStructures()
             continue;
         }
         if (!inReach(px, py)) continue;
-        for (label j = start[n]; j < start[n + 1]; ++j)
-        {
-            const label t = em.elementTriangle()[nodeElements[j]/3];
-            if (em.material(triRegion[t]).isFluid()) near.push_back(t);
-        }
+        forEachFluidElementOf
+        (
+            n, [&](const label, const label t) { near.push_back(t); }
+        );
     }
     return near;
 }
@@ -517,34 +529,18 @@ std::vector<Foam::label> Foam::spemMethods::SPEM::trianglesBehindWalls()
     std::vector<label> behind;
     if (!walls_) return behind;
     const elementModel& em = *elements_;
-    // The boundary sides of the fluid elements: the smoothing domains of
-    // one element; a side's nodes are the element's two other than the
-    // one opposite it (side i of mesh triangle t is edge triangleEdges[3t
-    // + i])
+    // The free nodes of the fluid elements' boundary sides
     if (em.topologyVersion() != fluidBoundaryVersion_)
     {
         fluidBoundaryVersion_ = em.topologyVersion();
         fluidBoundaryNodes_.clear();
-        const triMesh& mesh = case_.mesh;
-        const std::vector<label>& edges = mesh.edges();
-        const std::vector<label>& triEdges = mesh.triangleEdges();
-        const std::vector<label>& domains = em.elementDomains();
-        const std::vector<label>& domainElems = em.domainElements();
+        const std::vector<label>& tri = case_.mesh.triangles();
+        em.fluidBoundarySides(sideScratch_);
         std::vector<char> on(em.nNodes(), 0);
-        for (label r = 0; r < em.regions().size(); ++r)
+        for (const label side : sideScratch_)
         {
-            if (!em.hasMaterial(r) || !em.material(r).isFluid()) continue;
-            const elementModel::region& reg = em.regions()[r];
-            for (label el = reg.elemBegin; el < reg.elemEnd; ++el)
-            {
-                const label t = em.elementTriangle()[el];
-                for (label i = 0; i < 3; ++i)
-                {
-                    if (domainElems[2*domains[3*el + i] + 1] >= 0) continue;
-                    const label k = triEdges[3*t + i];
-                    on[edges[2*k]] = on[edges[2*k + 1]] = 1;
-                }
-            }
+            const label t = side/3, i = side % 3;
+            on[tri[3*t + i]] = on[tri[3*t + (i + 1) % 3]] = 1;
         }
         const std::vector<elementModel::constraint>& constraint =
             em.constraints();
@@ -559,60 +555,37 @@ std::vector<Foam::label> Foam::spemMethods::SPEM::trianglesBehindWalls()
                 fluidBoundaryNodes_.push_back(n);
             }
         }
-        nodeLookedUpAt_.resize(2*em.nNodes(), 0);
-        nodeClearanceSqr_.resize(em.nNodes(), 0);
+        if (!wallLookups_) wallLookups_.reset(new wallLookups(*walls_));
+        wallLookups_->resize(em.nNodes());
     }
 
-    // Each looked up again only once it has moved by its clearance
-    // (tankBoundary::clearance), as wallContact does for structure nodes
-    const tankBoundary& tank = *walls_;
+    // Each looked up again only once it has moved by its clearance, as
+    // wallContact does for structure nodes
     const std::vector<scalar>& x = em.positions();
     tankBoundary::nearestPoint q;
     for (const label n : fluidBoundaryNodes_)
     {
-        const scalar px = x[2*n], py = x[2*n + 1];
+        const wallLookups::place at =
+            wallLookups_->lookUp(n, x[2*n], x[2*n + 1], q);
+        // Grazing: a node that touches a wall by less than half a particle
+        // spacing (damBreak: 10 um, at its back wall's foot) is left to
+        // the distortion criterion
         if
         (
-            sqr(px - nodeLookedUpAt_[2*n]) + sqr(py - nodeLookedUpAt_[2*n + 1])
-          < nodeClearanceSqr_[n]
+            at == wallLookups::place::clear
+         || (
+                at == wallLookups::place::behind
+             && q.signedDistance < 0.5*fluidSpacing_
+            )
         )
         {
             continue;
         }
-        nodeLookedUpAt_[2*n] = px;
-        nodeLookedUpAt_[2*n + 1] = py;
-        nodeClearanceSqr_[n] = 0;
-        scalar wallDistance;
-        if (tank.nearest(px, py, q, &wallDistance))
-        {
-            if (!q.wall || !(q.signedDistance > 0))
-            {
-                nodeClearanceSqr_[n] = sqr(tank.clearance(q, wallDistance));
-                continue;
-            }
-            // Grazing: a node that touches a wall by less than half a
-            // particle spacing (damBreak: 10 um, at its back wall's foot)
-            // is left to the distortion criterion
-            if (q.signedDistance < 0.5*fluidSpacing_) continue;
-        }
-        else if (!tank.outside(px, py))
-        {
-            // Deep inside: every boundary edge at least reach away
-            nodeClearanceSqr_[n] = sqr((1 - 1e-9)*tank.reach());
-            continue;
-        }
         // Behind a wall (within reach or farther): its fluid elements
-        const std::vector<label>& start = em.nodeElementStart();
-        const std::vector<label>& nodeElements = em.nodeElements();
-        for (label j = start[n]; j < start[n + 1]; ++j)
-        {
-            const label el = nodeElements[j]/3;
-            const label t = em.elementTriangle()[el];
-            if (em.material(case_.mesh.triangleRegion()[t]).isFluid())
-            {
-                behind.push_back(t);
-            }
-        }
+        forEachFluidElementOf
+        (
+            n, [&](const label, const label t) { behind.push_back(t); }
+        );
     }
     return behind;
 }

@@ -2,6 +2,7 @@
 #include "parallelLoop.H"
 #include "error.H"
 
+#include <algorithm>
 #include <cmath>
 #include <limits>
 #include <numeric>
@@ -1655,6 +1656,29 @@ void Foam::elementModel::locate
         elements[i] =
             locateIn(gridded, x_[cur_], xy[2*i], xy[2*i + 1], &bary[3*i]);
     }
+}
+
+
+void Foam::elementModel::fluidBoundarySides(std::vector<label>& sides) const
+{
+    sides.clear();
+    for (label r = 0; r < regions_.size(); ++r)
+    {
+        if (!materials_.set(r) || !materials_[r].isFluid()) continue;
+        for (label d = regions_[r].domainBegin; d < regions_[r].domainEnd; ++d)
+        {
+            if (domainElems_[2*d + 1] >= 0) continue;
+            const label el = domainElems_[2*d];
+            for (label i = 0; i < 3; ++i)
+            {
+                if (elemDomains_[3*el + i] == d)
+                {
+                    sides.push_back(3*elemTriangle_[el] + i);
+                }
+            }
+        }
+    }
+    std::sort(sides.begin(), sides.end());
 }
 
 
