@@ -4605,6 +4605,59 @@ TEST_F(Solver, freeSurfaceProfileOfStillParticleColumnIsFlatAtItsHeight)
 }
 
 
+TEST_F(Solver, freeSurfaceProfileWithParticlePointsSurfaceIsAtTheWaterLevel)
+{
+    // The still SPH column of the test above with particlePoints surface:
+    // each surface particle's point half its spacing s out along -grad C,
+    // the water's surface. The highest point of each cell-wide bin must
+    // lie at y = H within s/4, where the centres lie s/2 below it (the
+    // top row at the barycentres of the top triangles, dy/3 = 0.47 s
+    // below H here); a shift of the wrong sign or none fails
+    edit(regions_, "mu      1e-3;\n", "mu      1e-3;\n        initialPressure hydrostatic;\n");
+    useSPH();
+    setControl("endTime", "0.04");
+    setControl("writeInterval", "100");
+    const double dx = columnWidth/nCellsX;
+    const double dy = columnHeight/nCellsY;
+    const double s = std::sqrt(0.5*dx*dy);
+    std::ostringstream bin;
+    bin.precision(17);
+    bin << "        topmostOnly     yes;\n        binWidth        " << dx
+        << ";\n";
+    functions_ =
+        profileEntry("centres", bin.str(), "100")
+      + profileEntry
+        (
+            "surface",
+            bin.str() + "        particlePoints  surface;\n", "100"
+        );
+    runExpectingSuccess();
+    if (HasFailure()) return;
+
+    const fs::path file = latestProfile(caseDir_, "surface");
+    ASSERT_FALSE(file.empty()) << "no profile written";
+    const auto surface = profilePoints(file);
+    const auto centres = profilePoints(latestProfile(caseDir_, "centres"));
+    ASSERT_EQ(surface.size(), std::size_t(nCellsX)) << readText(file);
+    ASSERT_EQ(centres.size(), surface.size());
+    EXPECT_TRUE(sortedByX(surface)) << readText(file);
+    double lowest = 1e30, highest = -1e30;
+    for (std::size_t p = 0; p < surface.size(); ++p)
+    {
+        EXPECT_NEAR(surface[p].second, columnHeight, 0.25*s) << readText(file);
+        // Up, by about half a spacing (the normal is not exactly vertical
+        // over the triangles' barycentres)
+        EXPECT_NEAR(surface[p].second - centres[p].second, 0.5*s, 0.1*s);
+        lowest = std::min(lowest, surface[p].second);
+        highest = std::max(highest, surface[p].second);
+    }
+    std::cout
+        << "SPH still column, particlePoints surface: y = " << lowest
+        << " .. " << highest << ", H = " << columnHeight << " (s = " << s
+        << ")" << std::endl;
+}
+
+
 TEST_F(Solver, freeSurfaceProfileSkipsTheElementParticleInterface)
 {
     // Method SPEM with the upper half of the column preset as particles:
@@ -4656,6 +4709,11 @@ TEST_F(Solver, freeSurfaceProfileRejectsBadInputNamingTheKeyword)
     functions_ = profileEntry("profile", "        minDivR -1;\n", "1");
     text = runExpectingFatalError();
     expectInLog(text, {"FATAL IO ERROR", "minDivR"});
+
+    functions_ =
+        profileEntry("profile", "        particlePoints middle;\n", "1");
+    text = runExpectingFatalError();
+    expectInLog(text, {"FATAL IO ERROR", "particlePoints"});
 }
 
 

@@ -17,6 +17,17 @@ namespace functionObjects
 }
 
 
+const Foam::Enum
+<
+    Foam::functionObjects::freeSurfaceProfile::particlePoint
+>
+Foam::functionObjects::freeSurfaceProfile::particlePointNames
+({
+    {particlePoint::centre, "centres"},
+    {particlePoint::surface, "surface"}
+});
+
+
 namespace
 {
 
@@ -114,7 +125,8 @@ Foam::functionObjects::freeSurfaceProfile::freeSurfaceProfile
     xMin_(-GREAT),
     xMax_(GREAT),
     topmostOnly_(false),
-    binWidth_(0)
+    binWidth_(0),
+    particlePoints_(particlePoint::centre)
 {
     read(dict);
     writeColumns({"points", "particles", "nodes"});
@@ -150,6 +162,16 @@ bool Foam::functionObjects::freeSurfaceProfile::read(const dictionary& dict)
     }
 
     topmostOnly_ = dict.getOrDefault<Switch>("topmostOnly", false);
+    const word points = dict.getOrDefault<word>("particlePoints", "centres");
+    if (!particlePointNames.found(points))
+    {
+        FatalIOErrorInFunction(dict)
+            << "particlePoints " << points << " must be one of "
+            << particlePointNames << " (centres: the particles' centres;"
+            << " surface: the water's surface beside them)"
+            << exit(FatalIOError);
+    }
+    particlePoints_ = particlePointNames[points];
 
     binWidth_ = 0;
     if (dict.found("binWidth"))
@@ -215,11 +237,27 @@ void Foam::functionObjects::freeSurfaceProfile::addParticles
     if (!m.hasParticles()) return;
     const sphFluid& sph = m.particles();
     const particleSet& ps = sph.particles();
+    const scalar* x = ps.positions().data();
+    const scalar* gradC = sph.gradC().data();
+    // Half a spacing, h_i/smoothingLengthRatio/2, per unit h
+    const scalar halfSpacing =
+        particlePoints_ == particlePoint::surface
+      ? 0.5/sph.schemeControls().smoothingLengthRatio
+      : 0;
     for (label i = 0; i < ps.size(); ++i)
     {
         if (ps.kinds()[i] != particleSet::kind::fluid) continue;
         if (!sph.freeSurface(i) || sph.divR()[i] < minDivR_) continue;
-        points.emplace_back(ps.positions()[2*i], ps.positions()[2*i + 1]);
+        scalar px = x[2*i], py = x[2*i + 1];
+        const scalar g = std::hypot(gradC[2*i], gradC[2*i + 1]);
+        if (halfSpacing > 0 && g > 0)
+        {
+            // grad C points into the water: the surface lies the other way
+            const scalar shift = halfSpacing*ps.smoothingLength()[i]/g;
+            px -= shift*gradC[2*i];
+            py -= shift*gradC[2*i + 1];
+        }
+        points.emplace_back(px, py);
     }
 }
 
