@@ -721,6 +721,26 @@ protected:
         setControl("deltaT", "4e-4");
     }
 
+    //- The column as method SPH, started hydrostatic, to 0.04 s (100
+    //  steps), written at the end: its particle spacing s = sqrt(dx dy/2),
+    //  and in bin the freeSurfaceProfile entries of one cell-wide bin per
+    //  column of cells (topmostOnly)
+    double stillParticleColumn(std::string& bin)
+    {
+        edit(regions_, "mu      1e-3;\n", "mu      1e-3;\n        initialPressure hydrostatic;\n");
+        useSPH();
+        setControl("endTime", "0.04");
+        setControl("writeInterval", "100");
+        const double dx = columnWidth/nCellsX;
+        const double dy = columnHeight/nCellsY;
+        std::ostringstream os;
+        os.precision(17);
+        os  << "        topmostOnly     yes;\n        binWidth        " << dx
+            << ";\n";
+        bin = os.str();
+        return std::sqrt(0.5*dx*dy);
+    }
+
     fs::path pvd(fs::path caseDir = fs::path()) const
     {
         if (caseDir.empty()) caseDir = caseDir_;
@@ -4557,20 +4577,10 @@ TEST_F(Solver, freeSurfaceProfileOfStillParticleColumnIsFlatAtItsHeight)
     // same height within s/4. Without topmostOnly, every point must be a
     // surface particle: none below the top few rows (the bottom and the
     // side walls are not free)
-    edit(regions_, "mu      1e-3;\n", "mu      1e-3;\n        initialPressure hydrostatic;\n");
-    useSPH();
-    setControl("endTime", "0.04");
-    setControl("writeInterval", "100");
-    const double dx = columnWidth/nCellsX;
-    const double dy = columnHeight/nCellsY;
-    const double s = std::sqrt(0.5*dx*dy);
-    std::ostringstream bin;
-    bin.precision(17);
-    bin << "        topmostOnly     yes;\n        binWidth        " << dx
-        << ";\n";
+    std::string bin;
+    const double s = stillParticleColumn(bin);
     functions_ =
-        profileEntry("points", "", "100")
-      + profileEntry("profile", bin.str(), "100");
+        profileEntry("points", "", "100") + profileEntry("profile", bin, "100");
     runExpectingSuccess();
     if (HasFailure()) return;
 
@@ -4613,23 +4623,13 @@ TEST_F(Solver, freeSurfaceProfileWithParticlePointsSurfaceIsAtTheWaterLevel)
     // lie at y = H within s/4, where the centres lie s/2 below it (the
     // top row at the barycentres of the top triangles, dy/3 = 0.47 s
     // below H here); a shift of the wrong sign or none fails
-    edit(regions_, "mu      1e-3;\n", "mu      1e-3;\n        initialPressure hydrostatic;\n");
-    useSPH();
-    setControl("endTime", "0.04");
-    setControl("writeInterval", "100");
-    const double dx = columnWidth/nCellsX;
-    const double dy = columnHeight/nCellsY;
-    const double s = std::sqrt(0.5*dx*dy);
-    std::ostringstream bin;
-    bin.precision(17);
-    bin << "        topmostOnly     yes;\n        binWidth        " << dx
-        << ";\n";
+    std::string bin;
+    const double s = stillParticleColumn(bin);
     functions_ =
-        profileEntry("centres", bin.str(), "100")
+        profileEntry("centres", bin, "100")
       + profileEntry
         (
-            "surface",
-            bin.str() + "        particlePoints  surface;\n", "100"
+            "surface", bin + "        particlePoints  surface;\n", "100"
         );
     runExpectingSuccess();
     if (HasFailure()) return;
