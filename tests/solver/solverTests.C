@@ -1125,6 +1125,74 @@ TEST_F(Solver, slidingFluidElementsOnlyOnANoSlipWall)
 }
 
 
+TEST_F(Solver, misspeltChoiceStopsNamingItsKeyword)
+{
+    // An entry that chooses among words (getCheckedEnum): a misspelt one
+    // stops before the first step naming the file, the keyword, the word
+    // found and the words allowed. OpenFOAM's own Enum reading named the
+    // file and the word, not the keyword
+    struct badChoice
+    {
+        std::string what;
+        std::function<void()> apply;
+        std::vector<std::string> expected;
+    };
+    const std::vector<badChoice> inputs =
+    {
+        {"sph/gradientCorrection",
+         [this]() { schemes_ += "sph { gradientCorrection decoupledFMP; }\n"; },
+         {"'gradientCorrection'", "'decoupledFMP'", "decoupledFPM",
+          "system/spemSchemes"}},
+        {"sph/momentumGradient",
+         [this]() { schemes_ += "sph { momentumGradient kernal; }\n"; },
+         {"'momentumGradient'", "'kernal'", "symmetrisedCorrection",
+          "system/spemSchemes"}},
+        {"coupling/interfaceForce",
+         [this]() { schemes_ += "coupling { interfaceForce balanced; }\n"; },
+         {"'interfaceForce'", "'balanced'", "balancedFluid",
+          "system/spemSchemes"}},
+        {"coupling/ghostSearch",
+         [this]() { schemes_ += "coupling { ghostSearch near; }\n"; },
+         {"'ghostSearch'", "'near'", "pairReach", "system/spemSchemes"}},
+        {"boundaries/top/type",
+         [this]()
+         {
+             edit(boundaries_, "type freeSurface;", "type freeSurfac;");
+         },
+         {"'type'", "'freeSurfac'", "freeSurface", "constant/spemProperties"}},
+        {"tank/leaving",
+         [this]() { boundaries_ += "}\n\ntank\n{\n    leaving delete;\n"; },
+         {"'leaving'", "'delete'", "remove", "constant/spemProperties"}},
+        {"bodies/float/fluidElements",
+         [this]()
+         {
+             rigidBodies_ = floatBody(0.5);
+             edit
+             (
+                 rigidBodies_, "motion free;",
+                 "motion free;\n        fluidElements slyde;"
+             );
+         },
+         {"'fluidElements' of body float", "'slyde'", "convert",
+          "constant/rigidBodyProperties"}}
+    };
+    const auto schemes = schemes_, boundaries = boundaries_;
+    const auto bodies = rigidBodies_;
+    for (const badChoice& in : inputs)
+    {
+        SCOPED_TRACE(in.what);
+        in.apply();
+        const std::string text = runExpectingFatalError();
+        std::vector<std::string> expected = {"FATAL IO ERROR"};
+        expected.insert(expected.end(), in.expected.begin(), in.expected.end());
+        expectInLog(text, expected);
+        schemes_ = schemes;
+        boundaries_ = boundaries;
+        rigidBodies_ = bodies;
+    }
+}
+
+
 TEST_F(Solver, unknownBoundaryTypeStopsListingValidTypes)
 {
     edit(boundaries_, "type freeSurface;", "type freeSurfac;");
@@ -4713,7 +4781,7 @@ TEST_F(Solver, freeSurfaceProfileRejectsBadInputNamingTheKeyword)
     functions_ =
         profileEntry("profile", "        particlePoints middle;\n", "1");
     text = runExpectingFatalError();
-    expectInLog(text, {"FATAL IO ERROR", "particlePoints"});
+    expectInLog(text, {"FATAL IO ERROR", "'particlePoints'", "'middle'"});
 }
 
 

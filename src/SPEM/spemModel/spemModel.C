@@ -85,7 +85,7 @@ void Foam::spemModel::readBoundaries()
         }
         const dictionary& d = bcDict.subDict(name);
         checkKeywords(d, {"type", "fluidElements"});
-        patchTypes_[p] = patchTypeNames.get("type", d);
+        patchTypes_[p] = getCheckedEnum(d, "type", patchTypeNames);
         // How the nodes of fluid elements meet a no-slip wall (see
         // patchConditions): pinned (default) or slide with the wall shear
         const word fluidElements =
@@ -238,9 +238,10 @@ Foam::tankBoundary::leavingAction Foam::spemModel::readLeaving() const
     const dictionary* tankDict = findDict("tank");
     if (!tankDict) return tankBoundary::leavingAction::stop;
     checkKeywords(*tankDict, {"leaving"});
-    return tankBoundary::leavingActionNames.getOrDefault
+    return getCheckedEnum
     (
-        "leaving", *tankDict, tankBoundary::leavingAction::stop
+        *tankDict, "leaving", tankBoundary::leavingActionNames,
+        tankBoundary::leavingAction::stop
     );
 }
 

@@ -1,4 +1,5 @@
 #include "freeSurfaceProfile.H"
+#include "checkKeywords.H"
 #include "Time.H"
 #include "OFstream.H"
 #include "addToRunTimeSelectionTable.H"
@@ -162,16 +163,11 @@ bool Foam::functionObjects::freeSurfaceProfile::read(const dictionary& dict)
     }
 
     topmostOnly_ = dict.getOrDefault<Switch>("topmostOnly", false);
-    const word points = dict.getOrDefault<word>("particlePoints", "centres");
-    if (!particlePointNames.found(points))
-    {
-        FatalIOErrorInFunction(dict)
-            << "particlePoints " << points << " must be one of "
-            << particlePointNames << " (centres: the particles' centres;"
-            << " surface: the water's surface beside them)"
-            << exit(FatalIOError);
-    }
-    particlePoints_ = particlePointNames[points];
+    particlePoints_ =
+        getCheckedEnum
+        (
+            dict, "particlePoints", particlePointNames, particlePoint::centre
+        );
 
     binWidth_ = 0;
     if (dict.found("binWidth"))

@@ -1,4 +1,5 @@
 #include "checkKeywords.H"
+#include "OStringStream.H"
 
 #include <algorithm>
 #include <cctype>
@@ -149,4 +150,45 @@ Foam::vector Foam::getCheckedVector
     const scalar m = scale > 0 ? scale*mag(v/scale) : 0;
     if (!magnitude.holds(m)) outOfRange(dict, key, m, magnitude, "the magnitude");
     return v;
+}
+
+
+Foam::label Foam::checkedWordIndex
+(
+    const dictionary& dict,
+    const word& key,
+    const wordList& allowed,
+    const bool required,
+    const std::string& what
+)
+{
+    const std::string entryName =
+        "Entry '" + key + "'" + (what.empty() ? "" : " " + what);
+    const entry* eptr = dict.findEntry(key, keyType::LITERAL);
+    if (!eptr)
+    {
+        if (!required) return -1;
+        FatalIOErrorInFunction(dict)
+            << entryName.c_str() << " is missing: give one of " << allowed
+            << exit(FatalIOError);
+    }
+    OStringStream found;
+    if (eptr->isStream())
+    {
+        const ITstream& is = eptr->stream();
+        if (is.size() == 1 && is[0].isWord())
+        {
+            const label i = allowed.find(is[0].wordToken());
+            if (i >= 0) return i;
+        }
+        forAll(is, i) found << (i ? " " : "") << is[i];
+    }
+    else
+    {
+        found << "a sub-dictionary";
+    }
+    FatalIOErrorInFunction(dict)
+        << entryName.c_str() << " must be one of " << allowed << ", found '"
+        << found.str().c_str() << "'" << exit(FatalIOError);
+    return -1;
 }

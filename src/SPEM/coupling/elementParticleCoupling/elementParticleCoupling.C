@@ -94,11 +94,11 @@ Foam::elementParticleCoupling::elementParticleCoupling
         interfaceSuction_ =
             d->getOrDefault<Switch>("interfaceSuction", interfaceSuction_);
         ghostSearch_ =
-            ghostSearchTypeNames.getOrDefault("ghostSearch", *d, ghostSearch_);
+            getCheckedEnum(*d, "ghostSearch", ghostSearchTypeNames, ghostSearch_);
         interfaceForce_ =
-            interfaceForceTypeNames.getOrDefault
+            getCheckedEnum
             (
-                "interfaceForce", *d, interfaceForce_
+                *d, "interfaceForce", interfaceForceTypeNames, interfaceForce_
             );
     }
 }

@@ -1,5 +1,5 @@
 #include "elasticSolid.H"
-#include "OStringStream.H"
+#include "checkKeywords.H"
 
 const Foam::Enum<Foam::elasticSolid::hypothesis>
 Foam::elasticSolid::hypothesisNames
@@ -26,43 +26,6 @@ Foam::scalar readPoisson(const Foam::dictionary& dict, const Foam::word& name)
 }
 
 
-//- The `hypothesis` entry, planeStrain if absent. Read by hand rather
-//  than with Enum::getOrDefault, whose errors name neither the keyword
-//  (unknown word) nor the entry (a number or a list)
-Foam::elasticSolid::hypothesis readHypothesis
-(
-    const Foam::dictionary& dict,
-    const Foam::word& name
-)
-{
-    using namespace Foam;
-    const entry* eptr = dict.findEntry("hypothesis", keyType::LITERAL);
-    if (!eptr) return elasticSolid::hypothesis::planeStrain;
-
-    OStringStream found;
-    if (eptr->isStream())
-    {
-        const ITstream& is = eptr->stream();
-        if
-        (
-            is.size() == 1 && is[0].isWord()
-         && elasticSolid::hypothesisNames.found(is[0].wordToken())
-        )
-        {
-            return elasticSolid::hypothesisNames.get(is[0].wordToken());
-        }
-        forAll(is, i) found << (i ? " " : "") << is[i];
-    }
-    else
-    {
-        found << "a sub-dictionary";
-    }
-    FatalIOErrorInFunction(dict)
-        << "Entry 'hypothesis' of region " << name << " must be one of "
-        << elasticSolid::hypothesisNames.names() << ", found '"
-        << found.str().c_str() << "'" << exit(FatalIOError);
-    return elasticSolid::hypothesis::planeStrain;
-}
 
 } // End anonymous namespace
 
@@ -72,7 +35,14 @@ Foam::elasticSolid::elasticSolid(const word& name, const dictionary& dict)
     spemMaterial(name, dict),
     E_(readChecked("E", saneRange::youngsModulus)),
     nu_(readPoisson(dict, name)),
-    hypothesis_(readHypothesis(dict, name)),
+    hypothesis_
+    (
+        getCheckedEnum
+        (
+            dict, "hypothesis", hypothesisNames, hypothesis::planeStrain,
+            "of region " + name
+        )
+    ),
     lambda_(E_*nu_/((1 + nu_)*(1 - 2*nu_))),
     mu_(E_/(2*(1 + nu_))),
     planeLambda_

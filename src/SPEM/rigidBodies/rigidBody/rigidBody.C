@@ -16,9 +16,10 @@ Foam::rigidBody::rigidBody(const word& name, const dictionary& dict)
     motion_(rigidBodyMotion::New(dict, *shape_)),
     elementContact_
     (
-        elementContactNames.getOrDefault
+        getCheckedEnum
         (
-            "fluidElements", dict, elementContact::slide
+            dict, "fluidElements", elementContactNames, elementContact::slide,
+            "of body " + name
         )
     ),
     wallRestitution_(dict.getOrDefault<scalar>("wallRestitution", 0))

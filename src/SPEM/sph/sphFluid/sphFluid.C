@@ -337,9 +337,10 @@ void Foam::sphFluid::controls::readEntries(const dictionary& d)
     smoothingLengthRatio =
         d.getOrDefault<scalar>("smoothingLengthRatio", smoothingLengthRatio);
     gradientCorrection =
-        gradientCorrectionTypeNames.getOrDefault
+        getCheckedEnum
         (
-            "gradientCorrection", d, gradientCorrection
+            d, "gradientCorrection", gradientCorrectionTypeNames,
+            gradientCorrection
         );
     densityDiffusion =
         d.getOrDefault<scalar>("densityDiffusion", densityDiffusion);
@@ -348,9 +349,9 @@ void Foam::sphFluid::controls::readEntries(const dictionary& d)
         d.getOrDefault<scalar>("freeSurfaceThreshold", freeSurfaceThreshold);
     wallLayers = d.getOrDefault<label>("wallLayers", wallLayers);
     momentumGradient =
-        momentumGradientTypeNames.getOrDefault
+        getCheckedEnum
         (
-            "momentumGradient", d, momentumGradient
+            d, "momentumGradient", momentumGradientTypeNames, momentumGradient
         );
     initialRelaxation =
         d.getOrDefault<label>("initialRelaxation", initialRelaxation);
