@@ -94,7 +94,10 @@ Foam::elementParticleCoupling::elementParticleCoupling
         interfaceSuction_ =
             d->getOrDefault<Switch>("interfaceSuction", interfaceSuction_);
         ghostSearch_ =
-            getCheckedEnum(*d, "ghostSearch", ghostSearchTypeNames, ghostSearch_);
+            getCheckedEnum
+            (
+                *d, "ghostSearch", ghostSearchTypeNames, ghostSearch_
+            );
         interfaceForce_ =
             getCheckedEnum
             (
