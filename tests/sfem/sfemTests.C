@@ -16,6 +16,7 @@ Description
 #include "IStringStream.H"
 
 #include <gtest/gtest.h>
+#include <algorithm>
 
 #include <cmath>
 #include <cstdio>
@@ -349,6 +350,81 @@ TEST(ESFEM, locateFindsWhatAPassOverEveryElementFindsWhileTheMeshMovesAndConvert
             }
         }
         EXPECT_GT(inside, 100);
+
+        // elementsNear (setGhosts' search, on the same grid): in
+        // increasing order, each once, and every element with a point of
+        // its triangle in the rectangle among them (the points tried: its
+        // nodes, centroid and the midpoints between them)
+        // (the last two at once: their union)
+        const std::vector<std::vector<scalar>> rects =
+        {
+            {0.3, 0.1, 0.5, 0.2}, {0.0, 0.0, 1.0, 0.5},
+            {0.61, -0.2, 0.62, 0.9}, {2.0, 2.0, 3.0, 3.0},
+            {-0.5, 0.24, 1.5, 0.26},
+            {0.1, 0.05, 0.12, 0.4, 0.8, 0.3, 0.95, 0.33}
+        };
+        for (const std::vector<scalar>& R : rects)
+        {
+            std::vector<label> near;
+            ASSERT_TRUE(em->elementsNear(R, near));
+            for (std::size_t k = 1; k < near.size(); ++k)
+            {
+                ASSERT_LT(near[k - 1], near[k]) << "not increasing, or twice";
+            }
+            label needed = 0;
+            for (label el = 0; el < em->nElements(); ++el)
+            {
+                const label* n = &em->elementNodes()[3*el];
+                const scalar cx =
+                    (x[2*n[0]] + x[2*n[1]] + x[2*n[2]])/3;
+                const scalar cy =
+                    (x[2*n[0] + 1] + x[2*n[1] + 1] + x[2*n[2] + 1])/3;
+                const auto inside = [&](const scalar px, const scalar py)
+                {
+                    for (std::size_t r = 0; r < R.size(); r += 4)
+                    {
+                        if
+                        (
+                            R[r] <= px && px <= R[r + 2]
+                         && R[r + 1] <= py && py <= R[r + 3]
+                        )
+                        {
+                            return true;
+                        }
+                    }
+                    return false;
+                };
+                bool in = inside(cx, cy);
+                for (label a = 0; a < 3; ++a)
+                {
+                    for (const scalar w : {0.0, 0.5})
+                    {
+                        in = in
+                         || inside
+                            (
+                                (1 - w)*x[2*n[a]] + w*cx,
+                                (1 - w)*x[2*n[a] + 1] + w*cy
+                            );
+                    }
+                }
+                if (!in) continue;
+                ++needed;
+                EXPECT_TRUE(std::binary_search(near.begin(), near.end(), el))
+                    << "element " << el << " missing for the rectangle ("
+                    << R[0] << ' ' << R[1] << ") (" << R[2] << ' ' << R[3]
+                    << ')' << (R.size() > 4 ? " and another" : "");
+            }
+            if (R[0] > 1.5)
+            {
+                EXPECT_TRUE(near.empty()) << "elements far beyond the mesh";
+            }
+            if (R.size() == 4 && R[2] - R[0] < 0.05)
+            {
+                EXPECT_LT(label(near.size()), em->nElements()/2)
+                    << "a thin strip lists half the elements";
+                EXPECT_GT(needed, 0);
+            }
+        }
     };
 
     ASSERT_TRUE(em->evaluate());
@@ -401,6 +477,70 @@ TEST(ESFEM, locateFindsWhatAPassOverEveryElementFindsWhileTheMeshMovesAndConvert
     em->restoreTriangles(mesh, some);
     em->removeTriangles(mesh, others);
     check("after removing as many others");
+}
+
+
+TEST(ESFEM, locateFollowsEveryWayTheNodesMove)
+{
+    // The grid is checked once per change of the positions (not once per
+    // query): each way the element model moves its nodes must count as a
+    // change. Each mover below shifts the whole mesh by 0.3 m in x after a
+    // query made the grid; a point beyond the old mesh but inside the new
+    // one must then be found, and one that only the old mesh covered not
+    const triMesh mesh = testMeshes::build({{0, 1, 0, 0.5, 8, 4, "water"}});
+    auto em = testModels::model(mesh, {{"water", testModels::water}});
+    const scalar shift = 0.3;
+    const auto shifted = [&](const std::vector<scalar>& x)
+    {
+        std::vector<scalar> y(x);
+        for (std::size_t n = 0; n < y.size()/2; ++n) y[2*n] += shift;
+        return y;
+    };
+    const auto expectShifted = [&](const std::string& how)
+    {
+        scalar w[3];
+        const scalar x0 = em->positions()[0] - shift;   // node 0 before
+        EXPECT_GE(em->locate(x0 + 1.15, 0.25, false, w), 0)
+            << how << ": a point of the moved mesh not found";
+        EXPECT_EQ(em->locate(x0 + 0.1, 0.25, false, w), -1)
+            << how << ": a point the mesh left still found";
+    };
+    scalar w[3];
+    const auto query = [&]() { em->locate(0.5, 0.25, false, w); };
+
+    query();
+    em->setState(shifted(em->positions()), em->velocities());
+    expectShifted("setState");
+
+    query();
+    {
+        const std::vector<scalar> x = shifted(em->positions());
+        for (label n = 0; n < em->nNodes(); ++n)
+        {
+            em->setPosition(n, x[2*n], x[2*n + 1]);
+        }
+    }
+    expectShifted("setPosition");
+
+    query();
+    for (label n = 0; n < em->nNodes(); ++n)
+    {
+        em->correctVelocity(n, shift/1e-3, 0, 1e-3);
+    }
+    expectShifted("correctVelocity");
+
+    // A step that moves the mesh by 0.3 m, then revert(): the grid of the
+    // moved mesh must not serve the reverted one
+    {
+        std::vector<scalar> v(em->velocities().size(), 0);
+        for (std::size_t n = 0; n < v.size()/2; ++n) v[2*n] = -shift/1e-3;
+        em->setState(em->positions(), v);
+    }
+    ASSERT_TRUE(em->evaluate());
+    ASSERT_TRUE(em->advance(1e-3));
+    query();
+    em->revert();
+    expectShifted("revert");
 }
 
 

@@ -1,7 +1,7 @@
 #include "elementLocator.H"
 
-#include <algorithm>
 #include <cmath>
+#include <cstdint>
 
 // * * * * * * * * * * * * * * * * Constructors  * * * * * * * * * * * * * * //
 
@@ -239,6 +239,61 @@ Foam::label Foam::elementLocator::find
         if (contains(x, &elementNodes[3*el], px, py, bary)) return el;
     }
     return -1;
+}
+
+
+void Foam::elementLocator::overlapping
+(
+    const std::vector<scalar>& rectangles,
+    std::vector<label>& out
+) const
+{
+    if (nx_ == 0) return;
+    // An element is listed in every cell its box overlaps: a bit per
+    // element, then the set bits in increasing order (no sort)
+    const std::size_t nWords = std::size_t(nElements_)/64 + 1;
+    seen_.assign(nWords, 0);
+    const auto cell = [](const scalar f, const label n)
+    {
+        return f <= 0 ? label(0) : f >= n - 1 ? n - 1 : label(f);
+    };
+    for (std::size_t r = 0; r + 3 < rectangles.size(); r += 4)
+    {
+        const scalar x0 = rectangles[r], y0 = rectangles[r + 1];
+        const scalar x1 = rectangles[r + 2], y1 = rectangles[r + 3];
+        // Empty, or beyond the grid: no element (each lies within its
+        // enlarged box, inside the grid)
+        if
+        (
+            !(x0 <= x1) || !(y0 <= y1)
+         || x1 < gx0_ || y1 < gy0_
+         || x0 > gx0_ + nx_*cellSize_ || y0 > gy0_ + ny_*cellSize_
+        )
+        {
+            continue;
+        }
+        const label i0 = cell((x0 - gx0_)*invCellSize_, nx_);
+        const label i1 = cell((x1 - gx0_)*invCellSize_, nx_);
+        const label j0 = cell((y0 - gy0_)*invCellSize_, ny_);
+        const label j1 = cell((y1 - gy0_)*invCellSize_, ny_);
+        // A row's cells are consecutive in cellElements_
+        for (label j = j0; j <= j1; ++j)
+        {
+            const label end = cellStart_[j*nx_ + i1 + 1];
+            for (label k = cellStart_[j*nx_ + i0]; k < end; ++k)
+            {
+                const label el = cellElements_[k];
+                seen_[el >> 6] |= std::uint64_t(1) << (el & 63);
+            }
+        }
+    }
+    for (std::size_t w = 0; w < nWords; ++w)
+    {
+        for (std::uint64_t bits = seen_[w]; bits; bits &= bits - 1)
+        {
+            out.push_back(label(64*w) + __builtin_ctzll(bits));
+        }
+    }
 }
 
 

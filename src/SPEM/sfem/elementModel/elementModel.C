@@ -767,6 +767,7 @@ void Foam::elementModel::setPosition(const label n, const scalar x, const scalar
 {
     x_[cur_][2*n] = x;
     x_[cur_][2*n + 1] = y;
+    ++positionsVersion_;
 }
 
 
@@ -793,6 +794,7 @@ void Foam::elementModel::setState
     v_[cur_] = v;
     x_[1 - cur_] = x;
     v_[1 - cur_] = v;
+    ++positionsVersion_;
 }
 
 
@@ -922,6 +924,7 @@ bool Foam::elementModel::advance(const scalar dt)
         );
     });
     cur_ = 1 - cur_;
+    ++positionsVersion_;
     previousDeltaT_[cur_] = dt;
     previousSubStep_[cur_] = dt;
     // A step without sub-steps: the next sub-cycled one starts the
@@ -1000,6 +1003,7 @@ bool Foam::elementModel::advanceFluidPartition(const scalar dt)
 
     const scalar subStep = previousSubStep_[cur_];
     cur_ = 1 - cur_;
+    ++positionsVersion_;
     previousDeltaT_[cur_] = dt;
     previousSubStep_[cur_] = subStep;
     if (!finite)
@@ -1405,6 +1409,7 @@ bool Foam::elementModel::advanceSolidSubStep
     if (t == 0)
     {
         previousSubStep_[cur_] = subDt;
+        ++positionsVersion_;
         if (!finite) failure_ = "a node velocity is not finite";
     }
     team.sync();
@@ -1511,6 +1516,7 @@ void Foam::elementModel::correctVelocity
     v_[cur_][2*n + 1] += dv;
     x_[cur_][2*n] += dt*du;
     x_[cur_][2*n + 1] += dt*dv;
+    ++positionsVersion_;
 }
 
 
@@ -1596,10 +1602,35 @@ Foam::elementModel::elementFields Foam::elementModel::fields() const
 
 bool Foam::elementModel::currentLocator() const
 {
+    // Nothing moved and no element changed since the last check: the grid
+    // holds without its pass over the nodes
+    if
+    (
+        locatorCheckedAt_ == positionsVersion_
+     && locator_.version() == topologyVersion_
+    )
+    {
+        return true;
+    }
     const std::vector<scalar>& x = x_[cur_];
-    return
+    const bool gridded =
         locator_.valid(x, nElements(), topologyVersion_)
      || locator_.build(x, elemNodes_, nElements(), topologyVersion_);
+    locatorCheckedAt_ = gridded ? positionsVersion_ : -1;
+    return gridded;
+}
+
+
+bool Foam::elementModel::elementsNear
+(
+    const std::vector<scalar>& rectangles,
+    std::vector<label>& out
+) const
+{
+    out.clear();
+    if (!currentLocator()) return false;
+    locator_.overlapping(rectangles, out);
+    return true;
 }
 
 
