@@ -509,12 +509,10 @@ void Foam::elementParticleCoupling::setGhosts
             return !nearFluid[label(fy)*gridNx + label(fx)];
         };
 
-    // The side of the box each node lies beyond by more than the largest
-    // reach of a ghost, kappa max(h_max, h of the largest fluid element),
-    // with a rounding margin (bits: left, below, right, above). The three
-    // nodes of an element beyond one side: so are its ghosts, which lie
-    // between them, and none reaches a particle. A byte per node, once,
-    // instead of six coordinates per element (most elements)
+    // The largest reach of a ghost, kappa max(h_max, h of the largest
+    // fluid element), with a rounding margin: an element farther than that
+    // from the box has no ghost in reach of a particle (its ghosts lie
+    // between its nodes)
     scalar largest[4] = {0, 0, 0, 0};
     for (label r = 0; r < elements.regions().size(); ++r)
     {
@@ -536,12 +534,207 @@ void Foam::elementParticleCoupling::setGhosts
     }
     const scalar largestArea =
         max(max(largest[0], largest[1]), max(largest[2], largest[3]));
+    const scalar d =
+        kappa*max(hFluid, smoothingLengthRatio_*std::sqrt(largestArea))
+      + boxSlack;
+    const scalar left = box[0] - d, below = box[1] - d;
+    const scalar right = box[2] + d, above = box[3] + d;
+
+    // Which of element el's ghosts reach a fluid particle (bit k: ghost
+    // k): a search per ghost in reach of the box, as costly as a
+    // particle's
+    const auto ghostsReaching = [&](const label el)
     {
-        const scalar d =
-            kappa*max(hFluid, smoothingLengthRatio_*std::sqrt(largestArea))
-          + boxSlack;
-        const scalar left = box[0] - d, below = box[1] - d;
-        const scalar right = box[2] + d, above = box[3] + d;
+        scalar gx[3], gy[3], hg;
+        candidates(el, gx, gy, hg);
+        unsigned char reached = 0;
+        for (label k = 0; k < perElement; ++k)
+        {
+            if
+            (
+                !outOfReach(gx[k], gy[k], hg)
+             && !noFluidNear(gx[k], gy[k], hg)
+             && reachesFluid(gx[k], gy[k], hg)
+            )
+            {
+                reached |= 1u << k;
+            }
+        }
+        return reached;
+    };
+
+    // The ghosts of element el that reach particles, in the order of
+    // their corners
+    const auto addGhosts = [&](const label el, const unsigned char reached)
+    {
+        scalar gx[3], gy[3], hg;
+        candidates(el, gx, gy, hg);
+        const label* n = &nodes[3*el];
+        // Eqs. (18, 20), with the density the element acts with (see the
+        // Description)
+        const scalar rhoGhost = smoothedDensity(el);
+        for (label k = 0; k < perElement; ++k)
+        {
+            if (!(reached & (1u << k))) continue;
+            ghostElement_.push_back(el);
+            ghostCorner_.push_back(split ? k : -1);
+            ghostX_.push_back(gx[k]);
+            ghostX_.push_back(gy[k]);
+            // Eq. (17) with equal nodal shares: the nodes' mean. A split
+            // ghost at (x_k + x_c)/2 moves at (v_k + v_c)/2, and that is
+            // the velocity it carries (see Description)
+            const scalar uc = (v[2*n[0]] + v[2*n[1]] + v[2*n[2]])/3;
+            const scalar vc =
+                (v[2*n[0] + 1] + v[2*n[1] + 1] + v[2*n[2] + 1])/3;
+            ghostV_.push_back(split ? 0.5*(v[2*n[k]] + uc) : uc);
+            ghostV_.push_back(split ? 0.5*(v[2*n[k] + 1] + vc) : vc);
+            ghostRho_.push_back(rhoGhost);
+            ghostM_.push_back(split ? mass[el]/3 : mass[el]);
+            ghostH_.push_back(hg);
+        }
+    };
+
+    // The elements that may have a ghost in reach, from the grid of the
+    // probes: each asked, in increasing order, so that the ghosts come in
+    // element order as from the pass over every element below. A ghost of
+    // h_ghost <= h_max that reaches a particle lies within D of it, so in
+    // one of the closed cells marked near fluid (all inside the grid): the
+    // elements over those cells (runs of them along a row, a rectangle
+    // each). The elements of h_ghost > h_max, which the cells do not
+    // rule out, are added whatever their place (few: larger than any
+    // particle's element). Without the cells, the box's rectangle
+    nearRectangles_.clear();
+    if (gridNx)
+    {
+        const scalar slack = boxSlack;
+        for (label iy = 0; iy < gridNy; ++iy)
+        {
+            const unsigned char* row = nearFluid + iy*gridNx;
+            for (label ix = 0; ix < gridNx; ++ix)
+            {
+                if (!row[ix]) continue;
+                label ix1 = ix;
+                while (ix1 + 1 < gridNx && row[ix1 + 1]) ++ix1;
+                nearRectangles_.insert
+                (
+                    nearRectangles_.end(),
+                    {
+                        gridX0 + ix*D - slack, gridY0 + iy*D - slack,
+                        gridX0 + (ix1 + 1)*D + slack,
+                        gridY0 + (iy + 1)*D + slack
+                    }
+                );
+                ix = ix1;
+            }
+        }
+    }
+    else
+    {
+        nearRectangles_.insert
+        (
+            nearRectangles_.end(), {left, below, right, above}
+        );
+    }
+    if (elements.elementsNear(nearRectangles_, nearBox_))
+    {
+        // The elements of h_ghost > h_max: an area above
+        // (h_max/(ratio r))^2, less a rounding margin, then h_ghost as
+        // candidates() takes it
+        if (gridNx)
+        {
+            const scalar hPerRootArea =
+                smoothingLengthRatio_*(split ? refinedRadiusRatio_ : 1);
+            const scalar areaBelow =
+                (1 - 1e-9)*sqr(hFluid/hPerRootArea);
+            largeElements_.clear();
+            if (largestArea > areaBelow)
+            {
+                for (label r = 0; r < elements.regions().size(); ++r)
+                {
+                    if
+                    (
+                        !elements.hasMaterial(r)
+                     || !elements.material(r).isFluid()
+                    )
+                    {
+                        continue;
+                    }
+                    const label end = elements.regions()[r].elemEnd;
+                    for
+                    (
+                        label el = elements.regions()[r].elemBegin;
+                        el < end;
+                        ++el
+                    )
+                    {
+                        if
+                        (
+                            area[el] > areaBelow
+                         && hPerRootArea*std::sqrt(area[el]) > hFluid
+                        )
+                        {
+                            largeElements_.push_back(el);
+                        }
+                    }
+                }
+            }
+            if (!largeElements_.empty())
+            {
+                const std::size_t n = nearBox_.size();
+                nearBox_.insert
+                (
+                    nearBox_.end(), largeElements_.begin(), largeElements_.end()
+                );
+                std::inplace_merge
+                (
+                    nearBox_.begin(), nearBox_.begin() + n, nearBox_.end()
+                );
+                nearBox_.erase
+                (
+                    std::unique(nearBox_.begin(), nearBox_.end()),
+                    nearBox_.end()
+                );
+            }
+        }
+        for (label r = 0; r < elements.regions().size(); ++r)
+        {
+            if (!elements.hasMaterial(r) || !elements.material(r).isFluid())
+            {
+                continue;
+            }
+            const label* all = nearBox_.data();
+            const label* allEnd = all + nearBox_.size();
+            const label* first =
+                std::lower_bound(all, allEnd, elements.regions()[r].elemBegin);
+            const label* last =
+                std::lower_bound(first, allEnd, elements.regions()[r].elemEnd);
+            const label nNear = label(last - first);
+            ghostReaches_.assign(nNear, 0);
+            unsigned char* reaches = ghostReaches_.data();
+            #pragma omp parallel for schedule(static) if(nNear > minParallelParticles)
+            for (label i = 0; i < nNear; ++i)
+            {
+                reaches[i] = ghostsReaching(first[i]);
+            }
+            for (label i = 0; i < nNear; ++i)
+            {
+                if (reaches[i]) addGhosts(first[i], reaches[i]);
+            }
+        }
+        particles.setGhosts
+        (
+            label(ghostM_.size()), ghostX_.data(), ghostV_.data(),
+            ghostRho_.data(), ghostM_.data(), ghostH_.data()
+        );
+        return;
+    }
+
+    // No grid (a node not finite): every element. The side of the box
+    // each node lies beyond by more than d (bits: left, below, right,
+    // above); the three nodes of an element beyond one side: so are its
+    // ghosts, and none reaches a particle. A byte per node, once, instead
+    // of six coordinates per element
+    {
         const label nNodes = elements.nNodes();
         nodeBeyond_.resize(nNodes);
         unsigned char* beyond = nodeBeyond_.data();
@@ -565,67 +758,21 @@ void Foam::elementParticleCoupling::setGhosts
         const label begin = elements.regions()[r].elemBegin;
         const label end = elements.regions()[r].elemEnd;
 
-        // Which of the elements' ghosts reach a fluid particle (bit k of
-        // the element's byte: ghost k): a search per ghost in reach of
-        // the box, as costly as a particle's, on every thread; then the
-        // ghosts in element order, as one thread made them
+        // On every thread; then the ghosts in element order, as one thread
+        // made them
         ghostReaches_.assign(end - begin, 0);
         unsigned char* reaches = ghostReaches_.data();
         #pragma omp parallel for schedule(static) if(end - begin > minParallelParticles)
         for (label el = begin; el < end; ++el)
         {
-            // All three nodes beyond one side of the box (reaches stays 0)
-            {
-                const label* n = &nodes[3*el];
-                if (beyond[n[0]] & beyond[n[1]] & beyond[n[2]]) continue;
-            }
-            scalar gx[3], gy[3], hg;
-            candidates(el, gx, gy, hg);
-            unsigned char reached = 0;
-            for (label k = 0; k < perElement; ++k)
-            {
-                if
-                (
-                    !outOfReach(gx[k], gy[k], hg)
-                 && !noFluidNear(gx[k], gy[k], hg)
-                 && reachesFluid(gx[k], gy[k], hg)
-                )
-                {
-                    reached |= 1u << k;
-                }
-            }
-            reaches[el - begin] = reached;
+            const label* n = &nodes[3*el];
+            if (beyond[n[0]] & beyond[n[1]] & beyond[n[2]]) continue;
+            reaches[el - begin] = ghostsReaching(el);
         }
-
         for (label el = begin; el < end; ++el)
         {
             const unsigned char reached = reaches[el - begin];
-            if (!reached) continue;
-            scalar gx[3], gy[3], hg;
-            candidates(el, gx, gy, hg);
-            const label* n = &nodes[3*el];
-            // Eqs. (18, 20), with the density the element acts with (see
-            // the Description)
-            const scalar rhoGhost = smoothedDensity(el);
-            for (label k = 0; k < perElement; ++k)
-            {
-                if (!(reached & (1u << k))) continue;
-                ghostElement_.push_back(el);
-                ghostCorner_.push_back(split ? k : -1);
-                ghostX_.push_back(gx[k]);
-                ghostX_.push_back(gy[k]);
-                // Eq. (17) with equal nodal shares: the nodes' mean. A
-                // split ghost at (x_k + x_c)/2 moves at (v_k + v_c)/2, and
-                // that is the velocity it carries (see Description)
-                const scalar uc = (v[2*n[0]] + v[2*n[1]] + v[2*n[2]])/3;
-                const scalar vc =
-                    (v[2*n[0] + 1] + v[2*n[1] + 1] + v[2*n[2] + 1])/3;
-                ghostV_.push_back(split ? 0.5*(v[2*n[k]] + uc) : uc);
-                ghostV_.push_back(split ? 0.5*(v[2*n[k] + 1] + vc) : vc);
-                ghostRho_.push_back(rhoGhost);
-                ghostM_.push_back(split ? mass[el]/3 : mass[el]);
-                ghostH_.push_back(hg);
-            }
+            if (reached) addGhosts(el, reached);
         }
     }
 
