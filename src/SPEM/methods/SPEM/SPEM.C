@@ -362,11 +362,10 @@ std::vector<Foam::label> Foam::spemMethods::SPEM::trianglesNearBodies()
         };
         // The nodes in reach, each tested once (a node has about six
         // elements)
-        nodesInReach_.clear();
-        for (label n = 0; n < em.nNodes(); ++n)
+        const auto inReach = [&](const label n)
         {
             // slide: the elements of the nodes on the body stay elements
-            if (slide && bodyElements_->attached(n)) continue;
+            if (slide && bodyElements_->attached(n)) return false;
             const scalar px = x[2*n];
             const scalar py = x[2*n + 1];
             if
@@ -376,9 +375,47 @@ std::vector<Foam::label> Foam::spemMethods::SPEM::trianglesNearBodies()
              || body.signedDistance(px, py) >= reach
             )
             {
-                continue;
+                return false;
             }
-            if (!slide || nearParticle(px, py)) nodesInReach_.push_back(n);
+            return !slide || nearParticle(px, py);
+        };
+        nodesInReach_.clear();
+        bodyBox_.assign
+        (
+            {
+                box.min().x() - reach, box.min().y() - reach,
+                box.max().x() + reach, box.max().y() + reach
+            }
+        );
+        if (em.elementsNear(bodyBox_, elementsInBox_))
+        {
+            // The nodes of the elements over the box: every node in it
+            // that has an element (a node without one has no element to
+            // give), each once (the order does not matter: a set, for
+            // trianglesToConvert)
+            nodeSeen_.resize(em.nNodes(), 0);
+            for (const label el : elementsInBox_)
+            {
+                for (label a = 0; a < 3; ++a)
+                {
+                    const label n = nodes[3*el + a];
+                    if (nodeSeen_[n]) continue;
+                    nodeSeen_[n] = 1;
+                    if (inReach(n)) nodesInReach_.push_back(n);
+                }
+            }
+            for (const label el : elementsInBox_)
+            {
+                for (label a = 0; a < 3; ++a) nodeSeen_[nodes[3*el + a]] = 0;
+            }
+        }
+        else
+        {
+            // No grid (a node not finite): every node
+            for (label n = 0; n < em.nNodes(); ++n)
+            {
+                if (inReach(n)) nodesInReach_.push_back(n);
+            }
         }
         // Their fluid elements. An element with two nodes in reach comes
         // twice (a set: trianglesToConvert)
