@@ -468,7 +468,10 @@ TEST(DistortionCriterionSelection, markDistortedOfARangeIsEachElementsDistorted)
     };
     for (label e = 0; e < nElements; ++e)
     {
-        const scalar ref[6] = {0, 0, 1, 0, 0, 1};
+        // Reference triangles of different shapes (their edges tell them
+        // apart)
+        const scalar stretch = 0.5 + random();
+        const scalar ref[6] = {0, 0, stretch, 0, 0, 1};
         for (label k = 0; k < 3; ++k)
         {
             nodes.push_back(label(X.size()/2));
@@ -478,6 +481,19 @@ TEST(DistortionCriterionSelection, markDistortedOfARangeIsEachElementsDistorted)
             x.push_back(ref[2*k] + e + 0.6*(random() - 0.5));
             x.push_back(ref[2*k + 1] + 0.6*(random() - 0.5));
         }
+    }
+    // The elements' mesh triangles in reverse order, each triangle's
+    // reference edges at its own place
+    std::vector<label> triangle(nElements);
+    std::vector<scalar> edges(4*nElements);
+    for (label e = 0; e < nElements; ++e)
+    {
+        triangle[e] = nElements - 1 - e;
+        const label* n = &nodes[3*e];
+        distortionCriterion::referenceEdges
+        (
+            &X[2*n[0]], &X[2*n[1]], &X[2*n[2]], &edges[4*triangle[e]]
+        );
     }
     for
     (
@@ -493,7 +509,11 @@ TEST(DistortionCriterionSelection, markDistortedOfARangeIsEachElementsDistorted)
         for (const label end : {nElements, label(40)})
         {
             std::vector<unsigned char> marked(nElements, 7);
-            c->markDistorted(0, end, nodes.data(), x.data(), X.data(), marked.data());
+            c->markDistorted
+            (
+                0, end, nodes.data(), x.data(), triangle.data(), edges.data(),
+                marked.data()
+            );
             label nDistorted = 0;
             for (label e = 0; e < end; ++e)
             {

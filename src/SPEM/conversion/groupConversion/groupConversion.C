@@ -58,6 +58,18 @@ Foam::groupConversion::groupConversion
 
     listGroupTriangles(assignGroups(mesh, fluidTriangle));
     findNeighbours(mesh);
+
+    const std::vector<scalar>& X = mesh.points();
+    const std::vector<label>& tri = mesh.triangles();
+    referenceEdges_.resize(4*mesh.nTriangles());
+    for (label t = 0; t < mesh.nTriangles(); ++t)
+    {
+        distortionCriterion::referenceEdges
+        (
+            &X[2*tri[3*t]], &X[2*tri[3*t + 1]], &X[2*tri[3*t + 2]],
+            &referenceEdges_[4*t]
+        );
+    }
 }
 
 
@@ -249,10 +261,16 @@ Foam::groupConversion::trianglesToConvert
 void Foam::groupConversion::markDistorted(const elementModel& elements)
 {
     const std::vector<scalar>& x = elements.positions();
-    const std::vector<scalar>& X = elements.referencePositions();
     const std::vector<label>& nodes = elements.elementNodes();
     const distortionCriterion& criterion = *criterion_;
     distorted_.assign(elements.nElements(), 0);
+    if (4*elements.nMeshTriangles() != label(referenceEdges_.size()))
+    {
+        FatalErrorInFunction
+            << "The element model is not of the conversion's mesh ("
+            << elements.nMeshTriangles() << " against "
+            << referenceEdges_.size()/4 << " triangles)" << exit(FatalError);
+    }
 
     for (label r = 0; r < elements.regions().size(); ++r)
     {
@@ -266,7 +284,9 @@ void Foam::groupConversion::markDistorted(const elementModel& elements)
         // Performance critical: every fluid element, every step
         criterion.markDistorted
         (
-            begin, end, nodes.data(), x.data(), X.data(), distorted_.data()
+            begin, end, nodes.data(), x.data(),
+            elements.elementTriangle().data(), referenceEdges_.data(),
+            distorted_.data()
         );
     }
 }
