@@ -1424,7 +1424,11 @@ TEST(SpemValidation, cylinderWaterExitOpensNoVoidAtTheParticleBox)
     // down by about one spacing; elements and particles that part at the
     // box's edge show free-surface points deep in the water (measured
     // with the suction at the interface and on the body clipped: 7.3
-    // spacings at T = 0.6, 17 at T = 0.8; issue 16)
+    // spacings at T = 0.6, 17 at T = 0.8; issue 16). The points are the
+    // water's surface (the tutorial's particlePoints surface). Measured
+    // 2026-12-05: 0.4, 0.8, 1.0 and 1.1 spacings at T = 0.2-0.8 (the
+    // particles' centres, half a spacing inside the water: 0.8, 1.2, 1.2
+    // and 1.4)
     const fs::path caseDir =
         copyTutorial("cylinderWaterExit", "spemCylinderWaterExitVoid");
     replaceEntry
@@ -1472,8 +1476,10 @@ TEST(SpemValidation, cylinderSinkingOpensNoVoidAtTheParticleBox)
     // at T = 0.4), and that is the topmost surface itself. A void at the
     // element-particle interface shows as free-surface points inside the
     // water: below the topmost surface at the same x (surfaceProfile, one
-    // spacing wide bins). Measured: at most 0.9 spacings at every write
-    // T = 0.2, 0.4, ..., 2.0.
+    // spacing wide bins; both the water's surface, the tutorial's
+    // particlePoints surface). Measured 2026-12-05: at most 1.0 spacings
+    // at every write T = 0.2, 0.4, ..., 2.0 but T = 1.8, 1.6 there (the
+    // particles' centres: at most 1.1, and 1.5 at T = 1.8).
     const fs::path caseDir =
         copyTutorial("cylinderSinking", "spemCylinderSinkingVoid");
     ASSERT_TRUE(runCase(caseDir));
