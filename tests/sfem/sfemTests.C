@@ -354,8 +354,8 @@ TEST(ESFEM, locateFindsWhatAPassOverEveryElementFindsWhileTheMeshMovesAndConvert
         // elementsNear (setGhosts' search, on the same grid): in
         // increasing order, each once, and every element with a point of
         // its triangle in the rectangle among them (the points tried: its
-        // nodes, centroid and the midpoints between them)
-        // (the last two at once: their union)
+        // nodes, centroid and the midpoints between them). The last entry
+        // is two rectangles at once: their union
         const std::vector<std::vector<scalar>> rects =
         {
             {0.3, 0.1, 0.5, 0.2}, {0.0, 0.0, 1.0, 0.5},
