@@ -612,7 +612,11 @@ inline Foam::scalar Foam::elementModel::smoothDomainGradient(const label k)
 }
 
 
-void Foam::elementModel::catchUpDomainGradients() const
+void Foam::elementModel::catchUpDomainGradients
+(
+    const label begin,
+    const label end
+) const
 {
     if (!domainGradBehind_) return;
     for (label r = 0; r < regions_.size(); ++r)
@@ -620,11 +624,13 @@ void Foam::elementModel::catchUpDomainGradients() const
         if (!materials_.set(r) || !materials_[r].isFluid()) continue;
         parallelFor
         (
-            regions_[r].domainBegin, regions_[r].domainEnd,
+            std::max(begin, regions_[r].domainBegin),
+            std::min(end, regions_[r].domainEnd),
             [&](const label k) { smoothedGradient(k, &domainGrad_[4*k]); }
         );
     }
-    domainGradBehind_ = false;
+    // Behind no more only if every domain was asked for
+    if (begin <= 0 && end >= nDomains()) domainGradBehind_ = false;
 }
 
 
@@ -1604,20 +1610,14 @@ void Foam::elementModel::domainCauchyStress
     scalar* pressure
 ) const
 {
+    // The gradients of these domains only (a probe asks for one)
+    catchUpDomainGradients(begin, end);
     for (label r = 0; r < regions_.size(); ++r)
     {
         if (!materials_.set(r)) continue;   // void: no elements
         const label b = std::max(begin, regions_[r].domainBegin);
         const label e = std::min(end, regions_[r].domainEnd);
         if (b >= e) continue;
-        // The gradients of these domains only (a probe asks for one)
-        if (domainGradBehind_ && materials_[r].isFluid())
-        {
-            for (label k = b; k < e; ++k)
-            {
-                smoothedGradient(k, &domainGrad_[4*k]);
-            }
-        }
         materials_[r].cauchyStress
         (
             b, e, domainGrad_.data(), domainArea_.data(), domainMass_.data(),
