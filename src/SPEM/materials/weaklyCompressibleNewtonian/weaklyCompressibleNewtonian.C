@@ -60,9 +60,58 @@ Foam::weaklyCompressibleNewtonian::weaklyCompressibleNewtonian
 namespace
 {
 
-//- The fluid stress of domains [begin, end), eqs. 6-10; with Bulk the bulk
+//- The fluid stress of the domains of the lanes of V from k on (simdLanes.H:
+//  scalar, or simd::pair for k and k + 1), eqs. 6-10; with Bulk the bulk
 //  viscous stress b1RhoC l div(v) too (taken from the pressure, so that
 //  without it the arithmetic is that of eqs. 7-10 alone)
+template<bool Bulk, class V>
+inline void fluidStressOf
+(
+    const Foam::label k,
+    const Foam::scalar* grad, const Foam::scalar* area,
+    const Foam::scalar* mass, Foam::scalar* stress,
+    const Foam::scalar c2, const Foam::scalar rho0, const Foam::scalar twoMu,
+    const Foam::scalar b1RhoC
+)
+{
+    using namespace Foam;
+    // Entry i of each lane's domain in field, stride entries per domain
+    const auto ofDomain = [&]
+    (
+        const scalar* field, const label stride, const label i
+    )
+    {
+        return simd::gather<V>
+        (
+            [&](const label l) { return field[stride*(k + l) + i]; }
+        );
+    };
+    V g[4];
+    for (label i = 0; i < 4; ++i) g[i] = ofDomain(grad, 4, i);
+    const V A = ofDomain(area, 1, 0);
+    const V div = g[0] + g[3];
+    V p = c2*(ofDomain(mass, 1, 0)/A - rho0);                   // eq. 7
+    if constexpr (Bulk)
+    {
+        p -= b1RhoC*weaklyCompressibleNewtonian::bulkViscosityLength(A)*div;
+    }
+    const V div3 = div/3.0;
+    V s[4];
+    s[0] = -p + twoMu*(g[0] - div3);                             // eqs. 9-10
+    s[1] = 0.5*twoMu*(g[1] + g[2]);
+    s[2] = s[1];
+    s[3] = -p + twoMu*(g[3] - div3);
+    for (label i = 0; i < 4; ++i)
+    {
+        simd::scatter
+        (
+            s[i], [&](const label l) -> scalar& { return stress[4*(k + l) + i]; }
+        );
+    }
+}
+
+
+//- fluidStressOf() of domains [begin, end), two at a time
 template<bool Bulk>
 void fluidStress
 (
@@ -74,22 +123,12 @@ void fluidStress
 )
 {
     using namespace Foam;
-    parallelFor(begin, end, [&](const label k)
+    simd::parallelForPairs(begin, end, [&](const auto tag, const label k)
     {
-        const scalar* g = grad + 4*k;
-        const scalar div = g[0] + g[3];
-        scalar p = c2*(mass[k]/area[k] - rho0);                 // eq. 7
-        if constexpr (Bulk)
-        {
-            p -= b1RhoC
-                *weaklyCompressibleNewtonian::bulkViscosityLength(area[k])*div;
-        }
-        const scalar div3 = div/3;
-        scalar* s = stress + 4*k;
-        s[0] = -p + twoMu*(g[0] - div3);                         // eqs. 9-10
-        s[1] = 0.5*twoMu*(g[1] + g[2]);
-        s[2] = s[1];
-        s[3] = -p + twoMu*(g[3] - div3);
+        fluidStressOf<Bulk, typename decltype(tag)::type>
+        (
+            k, grad, area, mass, stress, c2, rho0, twoMu, b1RhoC
+        );
     });
 }
 

@@ -1,5 +1,6 @@
 #include "elementModel.H"
 #include "parallelLoop.H"
+#include "simdLanes.H"
 #include "error.H"
 
 #include <algorithm>
@@ -15,12 +16,15 @@ namespace
 
 using Foam::scalar;
 using Foam::label;
+namespace simd = Foam::simd;
 
 //- Area and A*grad(N_a) of a triangle: A grad N_a is half the opposite edge
-//  rotated outward, so no division is needed. Returns the area.
-inline scalar triangleAreaGradN
+//  rotated outward, so no division is needed. Returns the area. V: scalar,
+//  or simd::pair for two triangles (simdLanes.H), as the helpers below
+template<class V>
+inline V triangleAreaGradN
 (
-    const scalar* x0, const scalar* x1, const scalar* x2, scalar* AgradN
+    const V* x0, const V* x1, const V* x2, V* AgradN
 )
 {
     AgradN[0] = 0.5*(x1[1] - x2[1]);
@@ -33,32 +37,35 @@ inline scalar triangleAreaGradN
 }
 
 //- Square of the longest edge of a triangle
-inline scalar longestEdgeSqr
+template<class V>
+inline V longestEdgeSqr
 (
-    const scalar* x0, const scalar* x1, const scalar* x2
+    const V* x0, const V* x1, const V* x2
 )
 {
-    auto len2 = [](const scalar* a, const scalar* b)
+    auto len2 = [](const V* a, const V* b)
     {
         return (a[0] - b[0])*(a[0] - b[0]) + (a[1] - b[1])*(a[1] - b[1]);
     };
-    return std::max({len2(x0, x1), len2(x1, x2), len2(x2, x0)});
+    // std::max({a, b, c})
+    return simd::max(simd::max(len2(x0, x1), len2(x1, x2)), len2(x2, x0));
 }
 
 //- Smallest altitude of a triangle, the length of its stability limit
-inline scalar minAltitude
+template<class V>
+inline V minAltitude
 (
-    const scalar* x0, const scalar* x1, const scalar* x2, const scalar area
+    const V* x0, const V* x1, const V* x2, const V area
 )
 {
-    return 2*area/std::sqrt(longestEdgeSqr(x0, x1, x2));
+    return 2.0*area/simd::sqrt(longestEdgeSqr(x0, x1, x2));
 }
 
 //- A_e grad w = sum_a w_a (x) A grad N_a, row-major g[2i + j] = dw_i/dx_j
+template<class V>
 inline void areaGradient
 (
-    const scalar* AgradN, const scalar* w0, const scalar* w1, const scalar* w2,
-    scalar* g
+    const V* AgradN, const V* w0, const V* w1, const V* w2, V* g
 )
 {
     for (int i = 0; i < 2; ++i)
@@ -471,31 +478,51 @@ bool Foam::elementModel::elementPass()
             // The smallest altitude; with a bulk viscosity, each times
             // the factor of its damping ratio b1 sqrt(A)/h
             scalar hMin = std::numeric_limits<scalar>::max();
-            const bool regionOk = parallelAllMin
+            // Two elements at a time (simdLanes.H)
+            const bool regionOk = simd::parallelAllMinPairs
             (
-                begin, end, hMin, [&](const label el, scalar& least)
+                begin, end, hMin,
+                [&](const auto tag, const label el, scalar& least)
                 {
-                    const label* n = &elemNodes_[3*el];
-                    const scalar* x0 = x + 2*n[0];
-                    const scalar* x1 = x + 2*n[1];
-                    const scalar* x2 = x + 2*n[2];
-                    scalar AgradN[6];
-                    const scalar A = triangleAreaGradN(x0, x1, x2, AgradN);
-                    elemArea_[el] = A;
-                    const scalar h = minAltitude(x0, x1, x2, A);
-                    least = std::min
+                    using V = typename decltype(tag)::type;
+                    V X[3][2], U[3][2];
+                    simd::gatherCorners(elemNodes_.data(), el, x, X);
+                    simd::gatherCorners(elemNodes_.data(), el, v, U);
+                    V AgradN[6];
+                    const V A = triangleAreaGradN(X[0], X[1], X[2], AgradN);
+                    simd::scatter
                     (
-                        least,
+                        A, [&](const label l) -> scalar& { return elemArea_[el + l]; }
+                    );
+                    const V h = minAltitude(X[0], X[1], X[2], A);
+                    const V limit =
                         b1 > 0
-                      ? h*spemMaterial::dampedStepFactor(b1*std::sqrt(A)/h)
-                      : h
-                    );
-                    areaGradient
-                    (
-                        AgradN, v + 2*n[0], v + 2*n[1], v + 2*n[2],
-                        &elemAreaGrad_[4*el]
-                    );
-                    return A > 0;
+                      ? h*spemMaterial::dampedStepFactor(b1*simd::sqrt(A)/h)
+                      : h;
+                    for (label l = 0; l < simd::lanes<V>::size; ++l)
+                    {
+                        least = std::min(least, simd::lane(limit, l));
+                    }
+                    V g[4];
+                    areaGradient(AgradN, U[0], U[1], U[2], g);
+                    for (label i = 0; i < 4; ++i)
+                    {
+                        simd::scatter
+                        (
+                            g[i],
+                            [&](const label l) -> scalar&
+                            {
+                                return elemAreaGrad_[4*(el + l) + i];
+                            }
+                        );
+                    }
+                    const auto positive = A > 0.0;
+                    bool ok = true;
+                    for (label l = 0; l < simd::lanes<V>::size; ++l)
+                    {
+                        ok = ok && simd::isTrue(positive, l);
+                    }
+                    return ok;
                 }
             );
             if (!regionOk || !std::isfinite(hMin))
@@ -592,16 +619,47 @@ inline Foam::scalar Foam::elementModel::smoothedGradient
     scalar g[4]
 ) const
 {
-    const label e0 = domainElems_[2*k], e1 = domainElems_[2*k + 1];
-    scalar A = elemArea_[e0];
-    for (label i = 0; i < 4; ++i) g[i] = elemAreaGrad_[4*e0 + i];
-    if (e1 >= 0)
+    return smoothedGradients<scalar>(k, g);
+}
+
+
+template<class V>
+inline V Foam::elementModel::smoothedGradients(const label k, scalar* g) const
+{
+    // Element j (0, 1) of each lane's domain: its area and A_e grad v
+    const label* e = &domainElems_[2*k];
+    const label nLanes = simd::lanes<V>::size;
+    const scalar* area[nLanes][2];
+    const scalar* grad[nLanes][2];
+    for (label l = 0; l < nLanes; ++l)
     {
-        A += elemArea_[e1];
-        for (label i = 0; i < 4; ++i) g[i] += elemAreaGrad_[4*e1 + i];
+        for (label j = 0; j < 2; ++j)
+        {
+            const label el = std::max(e[2*l + j], label(0));
+            area[l][j] = &elemArea_[el];
+            grad[l][j] = &elemAreaGrad_[4*el];
+        }
     }
-    const scalar invA = 1/A;
-    for (label i = 0; i < 4; ++i) g[i] *= invA;
+    const auto ofElement = [&](const label j, const scalar* const (*field)[2], const label i)
+    {
+        return simd::gather<V>([&](const label l) { return field[l][j][i]; });
+    };
+    V A = ofElement(0, area, 0);
+    V G[4];
+    for (label i = 0; i < 4; ++i) G[i] = ofElement(0, grad, i);
+    // e[1] < 0: a domain of one element (a boundary edge); domainPass()
+    // pairs only domains of two
+    if (simd::lanes<V>::size > 1 || e[1] >= 0)
+    {
+        A += ofElement(1, area, 0);
+        for (label i = 0; i < 4; ++i) G[i] += ofElement(1, grad, i);
+    }
+    const V invA = 1.0/A;
+    for (label i = 0; i < 4; ++i)
+    {
+        G[i] *= invA;
+        simd::scatter(G[i], [&](const label l) -> scalar& { return g[4*l + i]; });
+    }
     return A;
 }
 
@@ -636,25 +694,44 @@ void Foam::elementModel::catchUpDomainGradients
 
 inline void Foam::elementModel::elementForce(const label el, const scalar* x)
 {
+    elementForces<scalar>(el, x);
+}
+
+
+template<class V>
+inline void Foam::elementModel::elementForces(const label el, const scalar* x)
+{
     const scalar third = 1.0/3.0;
+    // The stresses of domain j of each lane's element
     const label* d = &elemDomains_[3*el];
-    scalar P[4];
+    const scalar* S[simd::lanes<V>::size][3];
+    for (label l = 0; l < simd::lanes<V>::size; ++l)
+    {
+        for (label j = 0; j < 3; ++j) S[l][j] = &domainStress_[4*d[3*l + j]];
+    }
+    V P[4];
     for (label i = 0; i < 4; ++i)
     {
-        P[i] = third*
-        (
-            domainStress_[4*d[0] + i] + domainStress_[4*d[1] + i]
-          + domainStress_[4*d[2] + i]
-        );
+        const auto stress = [&](const label j)
+        {
+            return simd::gather<V>([&](const label l) { return S[l][j][i]; });
+        };
+        P[i] = third*(stress(0) + stress(1) + stress(2));
     }
-    const label* n = &elemNodes_[3*el];
-    scalar AgradN[6];
-    triangleAreaGradN(x + 2*n[0], x + 2*n[1], x + 2*n[2], AgradN);
+    V X[3][2];
+    simd::gatherCorners(elemNodes_.data(), el, x, X);
+    V AgradN[6];
+    triangleAreaGradN(X[0], X[1], X[2], AgradN);
     scalar* f = &elemForce_[6*el];
     for (label a = 0; a < 3; ++a)
     {
-        f[2*a] = -(P[0]*AgradN[2*a] + P[1]*AgradN[2*a + 1]);
-        f[2*a + 1] = -(P[2]*AgradN[2*a] + P[3]*AgradN[2*a + 1]);
+        const V fx = -(P[0]*AgradN[2*a] + P[1]*AgradN[2*a + 1]);
+        const V fy = -(P[2]*AgradN[2*a] + P[3]*AgradN[2*a + 1]);
+        simd::scatter(fx, [&](const label l) -> scalar& { return f[6*l + 2*a]; });
+        simd::scatter
+        (
+            fy, [&](const label l) -> scalar& { return f[6*l + 2*a + 1]; }
+        );
     }
 }
 
@@ -683,10 +760,30 @@ bool Foam::elementModel::domainPass()
                     const label b = begin + i*block;
                     const label e = std::min(end, b + block);
                     scalar grad[4*block];
-                    for (label k = b; k < e; ++k)
+                    // Two domains at a time where both have two elements
+                    // (simdLanes.H)
+                    for (label k = b; k < e;)
                     {
-                        domainArea_[k] =
-                            smoothedGradient(k, grad + 4*(k - b))/3;
+                        if
+                        (
+                            k + 1 < e && domainElems_[2*k + 1] >= 0
+                         && domainElems_[2*k + 3] >= 0
+                        )
+                        {
+                            const simd::pair A = smoothedGradients<simd::pair>
+                            (
+                                k, grad + 4*(k - b)
+                            );
+                            domainArea_[k] = A[0]/3;
+                            domainArea_[k + 1] = A[1]/3;
+                            k += 2;
+                        }
+                        else
+                        {
+                            domainArea_[k] =
+                                smoothedGradient(k, grad + 4*(k - b))/3;
+                            ++k;
+                        }
                     }
                     // The material's stress depends on the domains'
                     // arrays only: the block's, from its first domain
@@ -741,8 +838,15 @@ void Foam::elementModel::forcePass()
             materials_[r].isFluid() ? x_[cur_].data() : X_.data();
         const label begin = regions_[r].elemBegin, end = regions_[r].elemEnd;
 
-        // Performance critical: every element, every step (eq. 5)
-        parallelFor(begin, end, [&](const label el) { elementForce(el, x); });
+        // Performance critical: every element, every step (eq. 5); two
+        // elements at a time (simdLanes.H)
+        simd::parallelForPairs
+        (
+            begin, end, [&](const auto tag, const label el)
+            {
+                elementForces<typename decltype(tag)::type>(el, x);
+            }
+        );
     }
 }
 
