@@ -204,6 +204,88 @@ TEST(ESFEM, nodalMassesSumToRegionMasses)
 }
 
 
+TEST(ESFEM, removingTrianglesNumbersTheRestAsABuildFromTheMeshDoes)
+{
+    // removeTriangles() renumbers the elements and domains left from the
+    // numbering before (removeRemovedElements()); restoreTriangles()
+    // builds them from the mesh. The same removed set must give the same
+    // model, bit for bit: a plate under water (domains across the
+    // interface), triangles taken out in three conversions, among them
+    // first and second elements of domains, a whole node's and plate ones
+    const triMesh mesh = testMeshes::build
+    ({
+        {0, 1, -0.1, 0, 10, 2, "plate"},
+        {0, 1, 0, 0.6, 10, 12, "water"}
+    });
+    const std::map<std::string, std::string> materials
+        {{"water", testModels::water}, {"plate", plateSolid}};
+    auto removed = testModels::model(mesh, materials);
+    auto built = testModels::model(mesh, materials);
+
+    // Every third triangle; then those of node 40 and two of the plate's;
+    // then every fifth of the rest
+    std::vector<std::vector<label>> rounds(3);
+    std::vector<bool> out(mesh.nTriangles(), false);
+    for (label t = 0; t < mesh.nTriangles(); t += 3) rounds[0].push_back(t);
+    for (label t = 0; t < mesh.nTriangles(); ++t)
+    {
+        for (label a = 0; a < 3; ++a)
+        {
+            if (mesh.triangles()[3*t + a] == 40 && t % 3) rounds[1].push_back(t);
+        }
+    }
+    rounds[1].push_back(1);
+    rounds[1].push_back(5);
+    for (const auto& round : {rounds[0], rounds[1]})
+    {
+        for (const label t : round) out[t] = true;
+    }
+    for (label t = 0, k = 0; t < mesh.nTriangles(); ++t)
+    {
+        if (!out[t] && ++k % 5 == 0) rounds[2].push_back(t);
+    }
+
+    std::vector<label> all;
+    for (const auto& round : rounds)
+    {
+        removed->removeTriangles(mesh, round);
+        all.insert(all.end(), round.begin(), round.end());
+    }
+    // The reference: the same set, and one triangle more put back, which
+    // builds it from the mesh
+    label extra = 0;
+    while (std::find(all.begin(), all.end(), extra) != all.end()) ++extra;
+    all.push_back(extra);
+    built->removeTriangles(mesh, all);
+    built->restoreTriangles(mesh, {extra});
+
+    ASSERT_EQ(removed->nElements(), built->nElements());
+    EXPECT_EQ(removed->elementTriangle(), built->elementTriangle());
+    EXPECT_EQ(removed->elementNodes(), built->elementNodes());
+    EXPECT_EQ(removed->elementDomains(), built->elementDomains());
+    EXPECT_EQ(removed->domainElements(), built->domainElements());
+    EXPECT_EQ(removed->nodeElementStart(), built->nodeElementStart());
+    EXPECT_EQ(removed->nodeElements(), built->nodeElements());
+    EXPECT_EQ(removed->elementMass(), built->elementMass());
+    EXPECT_EQ(removed->nodeMass(), built->nodeMass());
+    EXPECT_EQ(removed->domainMass(), built->domainMass());
+    EXPECT_EQ(removed->domainArea(), built->domainArea());
+    ASSERT_EQ(removed->regions().size(), built->regions().size());
+    forAll(removed->regions(), r)
+    {
+        const elementModel::region& a = removed->regions()[r];
+        const elementModel::region& b = built->regions()[r];
+        EXPECT_EQ(a.elemBegin, b.elemBegin) << a.name;
+        EXPECT_EQ(a.elemEnd, b.elemEnd) << a.name;
+        EXPECT_EQ(a.domainBegin, b.domainBegin) << a.name;
+        EXPECT_EQ(a.domainEnd, b.domainEnd) << a.name;
+    }
+    ASSERT_TRUE(removed->evaluate());
+    ASSERT_TRUE(built->evaluate());
+    EXPECT_EQ(removed->nodalForces(), built->nodalForces());
+}
+
+
 TEST(ESFEM, restoreTrianglesAfterARevertGivesBackTheModelBeforeTheRemoval)
 {
     // A step that converts the elements round a corner node (leaving it
