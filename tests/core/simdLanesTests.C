@@ -43,7 +43,7 @@ const std::vector<scalar> awkward =
 } // End anonymous namespace
 
 
-TEST(SimdLanes, maxAndMinArestdMaxAndMinLaneByLane)
+TEST(SimdLanes, maxAndMinAreStdMaxAndMinLaneByLane)
 {
     for (const scalar a0 : awkward)
     {
