@@ -97,6 +97,12 @@ void Foam::elementModel::build(const triMesh& mesh)
     std::vector<std::vector<std::array<label, 3>>> regionDomains =
         smoothingDomains(mesh, triElem);
     numberDomains(mesh, regionDomains);
+    buildFromNumbering();
+}
+
+
+void Foam::elementModel::buildFromNumbering()
+{
     buildNodeElements();
     buildReferenceGeometry();
     buildSolidPartition();
@@ -1623,9 +1629,7 @@ void Foam::elementModel::removeTriangles
     // conversions' time on Table 1's multi-resolution wedge, 57
     // conversions of 53,120 elements (benchmarks/README.md)
     removeRemovedElements();
-    buildNodeElements();
-    buildReferenceGeometry();
-    buildSolidPartition();
+    buildFromNumbering();
     if (!oldTriangles.empty())
     {
         // The new elements are the old ones less the removed, in the same
