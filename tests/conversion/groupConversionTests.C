@@ -28,6 +28,7 @@ Description
 #include <random>
 #include <set>
 #include <sstream>
+#include <string>
 
 namespace
 {
@@ -336,6 +337,119 @@ TEST(GroupConversion, oneDistortedElementConvertsItsWholeGroup)
     // distorted triangles
     EXPECT_GE(converted.size(), 3u*nDistorted);
     EXPECT_GE(converted.size(), 24u);
+}
+
+
+TEST(GroupConversion, testingOnlyTheMovedNodesElementsFindsWhatEveryElementsTestFinds)
+{
+    // A conversion asked every step tests, between its whole passes, only
+    // the elements of the nodes that moved beyond their slack. A swirl in
+    // a 24 x 24 block shears the elements round its centre more every
+    // step, until they distort and their groups convert (taken out of the
+    // model, as the SPEM does); the rest barely moves. Every step the
+    // triangles to convert equal those of a conversion made afresh (whose
+    // first call is a whole pass), for both criteria; triangles put back
+    // (restoreTriangles, a failed step's undo) and a NaN position are
+    // found too. And the test is skipped: few whole passes, and far fewer
+    // elements tested than a whole pass per step
+    const Foam::triMesh mesh =
+        testMeshes::build({{0, 24, 0, 24, 24, 24, "water"}});
+    const scalar hMax = 1.3*std::sqrt(0.5);
+    const std::vector<bool> fluid(mesh.nTriangles(), true);
+    for (const std::string criterion : {"minInteriorAngle", "stretchRatio"})
+    {
+        SCOPED_TRACE(criterion);
+        auto em = testModels::model(mesh, {{"water", water}});
+        const Foam::dictionary dict =
+            dictOf("criterion " + criterion + "; groupSizeFactor 1.3;");
+        Foam::groupConversion conversion(dict, mesh, fluid, hMax);
+        std::vector<scalar> x = mesh.points();
+        const std::vector<scalar> v0(x.size(), 0);
+        label nSteps = 0, nConverted = 0, nElementTests = 0, nDistorted = 0;
+        const auto sorted = [](const Foam::groupConversion& c)
+        {
+            std::vector<label> d = c.distortedElements();
+            std::sort(d.begin(), d.end());
+            return d;
+        };
+        std::vector<label> lastConverted;
+        for (label step = 0; step < 150; ++step)
+        {
+            // The swirl: 0.012 rad per step at the centre, falling off
+            // over a radius of 3 m; a node 1 m out turns by 0.011 rad a
+            // step, one 8 m out by 1e-5
+            for (label n = 0; n < mesh.nPoints(); ++n)
+            {
+                const scalar rx = x[2*n] - 12, ry = x[2*n + 1] - 12;
+                const scalar w =
+                    0.012*std::exp(-(rx*rx + ry*ry)/9);
+                x[2*n] -= w*ry;
+                x[2*n + 1] += w*rx;
+            }
+            em->setState(x, v0);
+            const std::vector<label> converted =
+                conversion.trianglesToConvert(*em);
+            Foam::groupConversion fresh(dict, mesh, fluid, hMax);
+            ASSERT_EQ(converted, fresh.trianglesToConvert(*em))
+                << "step " << step;
+            ASSERT_EQ(sorted(conversion), sorted(fresh)) << "step " << step;
+            nDistorted += label(conversion.distortedElements().size());
+            ++nSteps;
+            nElementTests += em->nElements();
+            if (!converted.empty())
+            {
+                em->removeTriangles(mesh, converted);
+                nConverted += label(converted.size());
+                lastConverted = converted;
+            }
+        }
+        std::cout << criterion << ": " << nDistorted << " distorted"
+            << " element-steps, " << nConverted << " of "
+            << mesh.nTriangles() << " triangles converted in " << nSteps
+            << " steps; " << conversion.nWholePasses() << " whole passes, "
+            << conversion.nElementsTested() << " elements tested between"
+            << " them, against " << nElementTests << " in a pass per step"
+            << std::endl;
+        EXPECT_GT(nDistorted, 0);
+        EXPECT_GT(nConverted, 0);
+        EXPECT_LT(nConverted, mesh.nTriangles()/2);
+        EXPECT_LT(conversion.nWholePasses(), nSteps/4);
+        // Measured: 0.28 of a pass per step for both (the swirl moves a
+        // tenth of the nodes, which starts whole passes)
+        EXPECT_LT
+        (
+            conversion.nWholePasses()*mesh.nTriangles()
+          + conversion.nElementsTested(),
+            nElementTests/2
+        );
+
+        // The last converted triangles back (distorted: they convert
+        // again): the element set changed other than by removal
+        ASSERT_FALSE(lastConverted.empty());
+        em->restoreTriangles(mesh, lastConverted);
+        em->setState(x, v0);
+        const label wholeBefore = conversion.nWholePasses();
+        const std::vector<label> again = conversion.trianglesToConvert(*em);
+        EXPECT_EQ(conversion.nWholePasses(), wholeBefore + 1);
+        {
+            Foam::groupConversion fresh(dict, mesh, fluid, hMax);
+            EXPECT_EQ(again, fresh.trianglesToConvert(*em));
+            EXPECT_EQ(sorted(conversion), sorted(fresh));
+        }
+        EXPECT_FALSE(again.empty());
+        em->removeTriangles(mesh, again);
+
+        // A node far from the swirl not finite: its elements distort
+        em->setState(x, v0);
+        conversion.trianglesToConvert(*em);
+        x[2*mesh.triangles()[0] + 1] = std::nan("");
+        em->setState(x, v0);
+        const std::vector<label> withNaN = conversion.trianglesToConvert(*em);
+        EXPECT_TRUE
+        (
+            std::binary_search(withNaN.begin(), withNaN.end(), label(0))
+        );
+    }
 }
 
 

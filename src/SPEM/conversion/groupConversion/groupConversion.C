@@ -2,8 +2,11 @@
 #include "elementModel.H"
 #include "checkKeywords.H"
 #include "parallelLoop.H"
+#include "simdLanes.H"
 
 #include <algorithm>
+#include <cstdint>
+#include <cstring>
 #include <cmath>
 
 // * * * * * * * * * * * * * * * * Constructors  * * * * * * * * * * * * * * //
@@ -208,7 +211,7 @@ Foam::groupConversion::trianglesToConvert
     if (none && forcedTriangles.empty()) return std::vector<label>();
     if (none)
     {
-        distorted_.assign(elements.nElements(), 0);
+        distorted_.clear();
     }
     else
     {
@@ -220,9 +223,8 @@ Foam::groupConversion::trianglesToConvert
     std::vector<bool>& convert = convertGroup_;
     convert.assign(nGroups(), false);
     bool any = false;
-    for (label el = 0; el < elements.nElements(); ++el)
+    for (const label el : distorted_)
     {
-        if (!distorted_[el]) continue;
         const label g = triangleGroup_[triangle[el]];
         if (g < 0) continue;
         convert[g] = true;
@@ -262,8 +264,9 @@ void Foam::groupConversion::markDistorted(const elementModel& elements)
 {
     const std::vector<scalar>& x = elements.positions();
     const std::vector<label>& nodes = elements.elementNodes();
+    const std::vector<label>& triangle = elements.elementTriangle();
     const distortionCriterion& criterion = *criterion_;
-    distorted_.assign(elements.nElements(), 0);
+    const label nNodes = elements.nNodes();
     if (4*elements.nMeshTriangles() != label(referenceEdges_.size()))
     {
         FatalErrorInFunction
@@ -271,23 +274,125 @@ void Foam::groupConversion::markDistorted(const elementModel& elements)
             << elements.nMeshTriangles() << " against "
             << referenceEdges_.size()/4 << " triangles)" << exit(FatalError);
     }
+    distorted_.clear();
+    ++nCalls_;
 
-    for (label r = 0; r < elements.regions().size(); ++r)
+    // The fluid elements: ranges of the regions
+    const auto fluidRegion = [&](const label r)
     {
-        if (!elements.hasMaterial(r) || !elements.material(r).isFluid())
-        {
-            continue;
-        }
-        const label begin = elements.regions()[r].elemBegin;
-        const label end = elements.regions()[r].elemEnd;
+        return elements.hasMaterial(r) && elements.material(r).isFluid();
+    };
 
-        // Performance critical: every fluid element, every step
-        criterion.markDistorted
-        (
-            begin, end, nodes.data(), x.data(),
-            elements.elementTriangle().data(), referenceEdges_.data(),
-            distorted_.data()
-        );
+    // The nodes that have moved beyond their slack since the whole pass
+    bool whole =
+        passBuild_ != elements.buildStamp()
+     || label(passX_.size()) != 2*nNodes;
+    if (!whole)
+    {
+        // A flag per node, a node's (x, y) as one pair, then the flags
+        // read eight at a time: most are clear
+        movedNodes_.clear();
+        movedFlags_.resize(nNodes + 8);
+        unsigned char* moved = movedFlags_.data();
+        const scalar* xp = passX_.data();
+        const scalar* slack = nodeSlack_.data();
+        const scalar* xn = x.data();
+        for (label n = 0; n < nNodes; ++n)
+        {
+            // Not "|d| >= slack": a NaN position counts as moved
+            simd::pair now, then;
+            std::memcpy(&now, xn + 2*n, sizeof now);
+            std::memcpy(&then, xp + 2*n, sizeof then);
+            const simd::pair d = now - then;
+            const simd::pair s = {slack[n], slack[n]};
+            const auto within = (d < s) & (d > -s);
+            moved[n] = !(within[0] & within[1]);
+        }
+        std::fill(moved + nNodes, moved + nNodes + 8, 0);
+        for (label n = 0; n < nNodes; n += 8)
+        {
+            std::uint64_t word;
+            std::memcpy(&word, moved + n, 8);
+            if (!word) continue;
+            for (label k = n; k < n + 8; ++k)
+            {
+                if (moved[k]) movedNodes_.push_back(k);
+            }
+        }
+        whole = 10*label(movedNodes_.size()) > nNodes;
+    }
+
+    if (whole)
+    {
+        ++nWholePasses_;
+        const label nEl = elements.nElements();
+        flags_.resize(nEl);
+        elementSlack_.resize(nEl);
+        passX_ = x;
+        nodeSlack_.assign(nNodes, VGREAT);
+        passBuild_ = elements.buildStamp();
+        for (label r = 0; r < elements.regions().size(); ++r)
+        {
+            if (!fluidRegion(r)) continue;
+            const label begin = elements.regions()[r].elemBegin;
+            const label end = elements.regions()[r].elemEnd;
+            criterion.markDistortedWithSlack
+            (
+                begin, end, nodes.data(), x.data(), triangle.data(),
+                referenceEdges_.data(), flags_.data(), elementSlack_.data()
+            );
+            for (label el = begin; el < end; ++el)
+            {
+                if (flags_[el]) distorted_.push_back(el);
+                const scalar s = elementSlack_[el];
+                for (label k = 0; k < 3; ++k)
+                {
+                    scalar& ns = nodeSlack_[nodes[3*el + k]];
+                    ns = s > 0 ? std::min(ns, s) : 0;
+                }
+            }
+        }
+        return;
+    }
+
+    // The fluid elements of the moved nodes, each once: the same test
+    // (nodeElements() holds 3 el + the node's corner)
+    const std::vector<label>& start = elements.nodeElementStart();
+    const std::vector<label>& slots = elements.nodeElements();
+    listedAt_.resize(elements.nElements(), 0);
+    candidates_.clear();
+    for (const label n : movedNodes_)
+    {
+        for (label i = start[n]; i < start[n + 1]; ++i)
+        {
+            const label el = slots[i]/3;
+            if (listedAt_[el] == nCalls_) continue;
+            listedAt_[el] = nCalls_;
+            for (label r = 0; r < elements.regions().size(); ++r)
+            {
+                if
+                (
+                    el >= elements.regions()[r].elemBegin
+                 && el < elements.regions()[r].elemEnd
+                )
+                {
+                    if (fluidRegion(r)) candidates_.push_back(el);
+                    break;
+                }
+            }
+        }
+    }
+    const label nCandidates = label(candidates_.size());
+    nElementsTested_ += nCandidates;
+    flags_.resize(max(label(flags_.size()), nCandidates));
+    criterion.markDistortedOf
+    (
+        candidates_.data(), nCandidates, nodes.data(), x.data(),
+        triangle.data(), referenceEdges_.data(), flags_.data()
+    );
+    for (label i = 0; i < nCandidates; ++i)
+    {
+        if (flags_[i]) distorted_.push_back(candidates_[i]);
     }
 }
 

@@ -1,9 +1,11 @@
 #include "elementModel.H"
+
 #include "parallelLoop.H"
 #include "simdLanes.H"
 #include "error.H"
 
 #include <algorithm>
+#include <atomic>
 #include <cmath>
 #include <limits>
 #include <numeric>
@@ -84,6 +86,10 @@ inline void areaGradient
 
 void Foam::elementModel::build(const triMesh& mesh)
 {
+    // Unique among all models: a model built anew at the same address
+    // (a test, a restart) does not pass for the old one
+    static std::atomic<label> builds(0);
+    buildStamp_ = ++builds;
     const label nReg = mesh.nRegions();
 
     if (materials_.size() != nReg)
