@@ -454,12 +454,13 @@ TEST(DistortionCriterionSelection, selectedByCriterionKeywordWithMinInteriorAngl
 }
 
 
-TEST(DistortionCriterionSelection, markDistortedOfARangeIsEachElementsDistorted)
+TEST(DistortionCriterionSelection, markingARangeGivesEachElementsDistorted)
 {
-    // markDistorted() (one virtual call per range, groupConversion's every
-    // step) against distorted() element by element, for every model, on a
-    // range long enough to be split among threads (above minParallelLoop)
-    // and a short one, of randomly sheared triangles
+    // markDistortedWithSlack() (one virtual call per range,
+    // groupConversion's whole passes) against distorted() element by
+    // element, for every model, on a range long enough to be split among
+    // threads (above minParallelLoop) and a short one, of randomly sheared
+    // triangles
     const label nElements = 3*minParallelLoop + 17;
     std::vector<scalar> X, x;
     std::vector<label> nodes;
@@ -512,10 +513,11 @@ TEST(DistortionCriterionSelection, markDistortedOfARangeIsEachElementsDistorted)
         for (const label end : {nElements, label(40)})
         {
             std::vector<unsigned char> marked(nElements, 7);
-            c->markDistorted
+            std::vector<scalar> slack(nElements, -1);
+            c->markDistortedWithSlack
             (
                 0, end, nodes.data(), x.data(), triangle.data(), edges.data(),
-                marked.data()
+                marked.data(), slack.data()
             );
             label nDistorted = 0;
             for (label e = 0; e < end; ++e)
@@ -532,6 +534,7 @@ TEST(DistortionCriterionSelection, markDistortedOfARangeIsEachElementsDistorted)
             for (label e = end; e < nElements; ++e)
             {
                 ASSERT_EQ(marked[e], 7) << "written outside the range";
+                ASSERT_EQ(slack[e], -1) << "written outside the range";
             }
             if (criterion != "none" && end == nElements)
             {
@@ -545,7 +548,7 @@ TEST(DistortionCriterionSelection, markDistortedOfARangeIsEachElementsDistorted)
 
 TEST(DistortionCriterionSelection, noMoveWithinTheSlackMakesAnUndistortedElementDistorted)
 {
-    // markDistortedWithSlack(): the flags of markDistorted(), and a slack
+    // markDistortedWithSlack(): the flags of distorted(), and a slack
     // such that no move of the nodes within it (in x and in y) makes the
     // element distorted, which groupConversion relies on to skip the test
     // of elements whose nodes have not moved that far. Randomly sheared
@@ -592,11 +595,15 @@ TEST(DistortionCriterionSelection, noMoveWithinTheSlackMakesAnUndistortedElement
         );
         std::vector<unsigned char> flags(nElements), withSlack(nElements);
         std::vector<scalar> slack(nElements, -1);
-        c->markDistorted
-        (
-            0, nElements, nodes.data(), x.data(), triangle.data(),
-            edges.data(), flags.data()
-        );
+        for (label e = 0; e < nElements; ++e)
+        {
+            const label* n = &nodes[3*e];
+            flags[e] = c->distorted
+            (
+                &x[2*n[0]], &x[2*n[1]], &x[2*n[2]],
+                &X[2*n[0]], &X[2*n[1]], &X[2*n[2]]
+            );
+        }
         c->markDistortedWithSlack
         (
             0, nElements, nodes.data(), x.data(), triangle.data(),
