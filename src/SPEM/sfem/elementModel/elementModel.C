@@ -1,5 +1,4 @@
 #include "elementModel.H"
-
 #include "parallelLoop.H"
 #include "simdLanes.H"
 #include "error.H"
