@@ -20,6 +20,7 @@ Description
 
 #include <cmath>
 #include <cstdio>
+#include <limits>
 
 using namespace Foam;
 
@@ -623,6 +624,73 @@ TEST(ESFEM, locateFollowsEveryWayTheNodesMove)
     query();
     em->revert();
     expectShifted("revert");
+}
+
+
+TEST(ESFEM, locatorSkipsItsPassOnlyWhileTheBoundHoldsEveryNodesMove)
+{
+    // The grid's pass over the nodes is skipped while a bound on the moves
+    // since it was built (the last pass's drift plus dt max|v| per step
+    // and the move of each interface correction) stays within its reach.
+    // The bound must hold each node's true move since the build, at every
+    // check, and it must skip most passes in a smooth flow. The mesh and
+    // shear of locateFindsWhatAPassOverEveryElementFinds...: speeds up to
+    // about 1.35 m/s, a reach of 0.0265 m
+    const triMesh mesh = testMeshes::build({{0, 1, 0, 0.5, 24, 12, "water"}});
+    auto em = testModels::model(mesh, {{"water", testModels::water}});
+    const scalar G[4] = {0.4, 1.5, -0.3, -0.4}, b[2] = {0.2, -0.1};
+    em->setVelocity(linearField(mesh.points(), G, b));
+    ASSERT_TRUE(em->evaluate());
+    const scalar dt = 0.5*em->stableDeltaT();
+
+    std::vector<scalar> built;      // the positions of the last build
+    label builds = -1, checks = 0;
+    scalar tightest = std::numeric_limits<scalar>::max();
+    scalar w[3];
+    for (label step = 0; step < 600; ++step)
+    {
+        ASSERT_TRUE(em->advance(dt));
+        ASSERT_TRUE(em->evaluate());
+        // Interface corrections (eq. 26) of a few nodes, every third step,
+        // up to 0.5 m/s
+        if (step % 3 == 0)
+        {
+            for (label k = 0; k < 4; ++k)
+            {
+                const label n = (37*step + 101*k) % em->nNodes();
+                em->correctVelocity
+                (
+                    n, 0.5*std::sin(step + k), 0.5*std::cos(3*step + k), dt
+                );
+            }
+        }
+        em->locate(0.5, 0.25, false, w);
+        ++checks;
+        if (em->locatorBuilds() != builds)
+        {
+            builds = em->locatorBuilds();
+            built = em->positions();
+        }
+        const std::vector<scalar>& x = em->positions();
+        scalar moved = 0;
+        for (std::size_t i = 0; i < x.size(); ++i)
+        {
+            moved = std::max(moved, std::abs(x[i] - built[i]));
+        }
+        const scalar bound = em->locatorDriftBound();
+        ASSERT_LE(moved, bound) << "step " << step;
+        if (moved > 0.01) tightest = std::min(tightest, bound/moved);
+    }
+    EXPECT_GT(em->locatorBuilds(), 3) << "the mesh did not move enough";
+    EXPECT_LT(em->locatorPasses(), checks/4)
+        << "passes not skipped: " << em->locatorPasses() << " of " << checks;
+    std::printf
+    (
+        "%d checks, %d passes, %d builds; the bound at least %.3f times the"
+        " largest move (moves above 0.01 m)\n",
+        int(checks), int(em->locatorPasses()), int(em->locatorBuilds()),
+        tightest
+    );
 }
 
 

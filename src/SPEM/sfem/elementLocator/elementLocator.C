@@ -2,6 +2,7 @@
 
 #include <cmath>
 #include <cstdint>
+#include <limits>
 
 // * * * * * * * * * * * * * * * * Constructors  * * * * * * * * * * * * * * //
 
@@ -10,36 +11,43 @@ Foam::elementLocator::elementLocator()
     version_(-1),
     nElements_(-1),
     margin_(0),
+    coordinateScale_(0),
     gx0_(0),
     gy0_(0),
     cellSize_(1),
     invCellSize_(1),
     nx_(0),
     ny_(0),
-    nBuilds_(0)
+    nBuilds_(0),
+    nPasses_(0)
 {}
 
 
 // * * * * * * * * * * * * * * * Member Functions  * * * * * * * * * * * * * //
 
-bool Foam::elementLocator::valid
+Foam::scalar Foam::elementLocator::drift
 (
     const std::vector<scalar>& x,
     const label nElements,
     const label version
 ) const
 {
-    if (version != version_ || nElements != nElements_) return false;
-    if (x.size() != x0_.size()) return false;
+    ++nPasses_;
+    constexpr scalar never = std::numeric_limits<scalar>::infinity();
+    if (version != version_ || nElements != nElements_) return never;
+    if (x.size() != x0_.size()) return never;
     const scalar* a = x.data();
     const scalar* b = x0_.data();
+    // A NaN compares false: counted apart, so that the loop vectorises
+    scalar largest = 0;
+    bool finite = true;
     for (std::size_t i = 0; i < x.size(); ++i)
     {
-        // 0.9: the enlarged boxes keep a slack of a tenth of the margin
-        // for the barycentric tolerance of contains()
-        if (!(std::abs(a[i] - b[i]) <= 0.9*margin_)) return false;
+        const scalar d = std::abs(a[i] - b[i]);
+        largest = d > largest ? d : largest;
+        finite = finite & (d == d);
     }
-    return true;
+    return finite ? largest : never;
 }
 
 
@@ -93,6 +101,13 @@ bool Foam::elementLocator::build
     }
     const scalar size = std::sqrt(std::max(sumArea, VSMALL)/nElements);
     margin_ = 0.5*size;
+    coordinateScale_ =
+        std::max
+        (
+            std::max(std::abs(lo[0]), std::abs(hi[0])),
+            std::max(std::abs(lo[1]), std::abs(hi[1]))
+        )
+      + reach();
     cellSize_ = 2*size;
     // At most about 4 cells per element, whatever the box's aspect
     const scalar w = hi[0] - lo[0] + 2*margin_, h = hi[1] - lo[1] + 2*margin_;
