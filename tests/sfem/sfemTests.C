@@ -205,26 +205,25 @@ TEST(ESFEM, nodalMassesSumToRegionMasses)
 }
 
 
-TEST(ESFEM, removingTrianglesNumbersTheRestAsABuildFromTheMeshDoes)
+// removeTriangles() renumbers the elements and domains left from the
+// numbering before (removeRemovedElements(), removeRemovedNodeElements());
+// restoreTriangles() builds them from the mesh. The same removed set must
+// give the same model, bit for bit. Triangles taken out in three
+// conversions, among them first and second elements of domains and a
+// whole node's
+void expectRemovalGivesTheBuildsModel
+(
+    const triMesh& mesh,
+    const std::map<std::string, std::string>& materials,
+    const label node,
+    const std::vector<label>& alsoFirst
+)
 {
-    // removeTriangles() renumbers the elements and domains left from the
-    // numbering before (removeRemovedElements()); restoreTriangles()
-    // builds them from the mesh. The same removed set must give the same
-    // model, bit for bit: a plate under water (domains across the
-    // interface), triangles taken out in three conversions, among them
-    // first and second elements of domains, a whole node's and plate ones
-    const triMesh mesh = testMeshes::build
-    ({
-        {0, 1, -0.1, 0, 10, 2, "plate"},
-        {0, 1, 0, 0.6, 10, 12, "water"}
-    });
-    const std::map<std::string, std::string> materials
-        {{"water", testModels::water}, {"plate", plateSolid}};
     auto removed = testModels::model(mesh, materials);
     auto built = testModels::model(mesh, materials);
 
-    // Every third triangle; then those of node 40 and two of the plate's;
-    // then every fifth of the rest
+    // Every third triangle; then those of the node and alsoFirst; then
+    // every fifth of the rest
     std::vector<std::vector<label>> rounds(3);
     std::vector<bool> out(mesh.nTriangles(), false);
     for (label t = 0; t < mesh.nTriangles(); t += 3) rounds[0].push_back(t);
@@ -232,11 +231,10 @@ TEST(ESFEM, removingTrianglesNumbersTheRestAsABuildFromTheMeshDoes)
     {
         for (label a = 0; a < 3; ++a)
         {
-            if (mesh.triangles()[3*t + a] == 40 && t % 3) rounds[1].push_back(t);
+            if (mesh.triangles()[3*t + a] == node && t % 3) rounds[1].push_back(t);
         }
     }
-    rounds[1].push_back(1);
-    rounds[1].push_back(5);
+    for (const label t : alsoFirst) rounds[1].push_back(t);
     for (const auto& round : {rounds[0], rounds[1]})
     {
         for (const label t : round) out[t] = true;
@@ -271,6 +269,10 @@ TEST(ESFEM, removingTrianglesNumbersTheRestAsABuildFromTheMeshDoes)
     EXPECT_EQ(removed->nodeMass(), built->nodeMass());
     EXPECT_EQ(removed->domainMass(), built->domainMass());
     EXPECT_EQ(removed->domainArea(), built->domainArea());
+    for (label n = 0; n < removed->nNodes(); ++n)
+    {
+        EXPECT_EQ(removed->solidNode(n), built->solidNode(n)) << "node " << n;
+    }
     ASSERT_EQ(removed->regions().size(), built->regions().size());
     forAll(removed->regions(), r)
     {
@@ -284,6 +286,34 @@ TEST(ESFEM, removingTrianglesNumbersTheRestAsABuildFromTheMeshDoes)
     ASSERT_TRUE(removed->evaluate());
     ASSERT_TRUE(built->evaluate());
     EXPECT_EQ(removed->nodalForces(), built->nodalForces());
+}
+
+
+TEST(ESFEM, removingTrianglesNumbersTheRestAsABuildFromTheMeshDoes)
+{
+    // A plate under water (domains across the interface; the solid
+    // partition built again), node 40's triangles and two of the plate's
+    const triMesh mesh = testMeshes::build
+    ({
+        {0, 1, -0.1, 0, 10, 2, "plate"},
+        {0, 1, 0, 0.6, 10, 12, "water"}
+    });
+    expectRemovalGivesTheBuildsModel
+    (
+        mesh, {{"water", testModels::water}, {"plate", plateSolid}}, 40,
+        {1, 5}
+    );
+}
+
+
+TEST(ESFEM, removingTrianglesOfAModelWithoutSolidsNumbersTheRestAsABuildDoes)
+{
+    // Water alone (buildSolidPartition()'s way without a solid region)
+    const triMesh mesh = testMeshes::build({{0, 1, 0, 0.6, 10, 12, "water"}});
+    expectRemovalGivesTheBuildsModel
+    (
+        mesh, {{"water", testModels::water}}, 40, {1, 5}
+    );
 }
 
 

@@ -116,6 +116,25 @@ void Foam::elementModel::buildFromNumbering()
 
 void Foam::elementModel::buildSolidPartition()
 {
+    // No solid region: no solid node or element, no interface, as the
+    // passes below find them. After the first build only the element
+    // count can change (a conversion), and subX_ and subV_ have stayed
+    // zero: they are written at the interface nodes only
+    bool solid = false;
+    for (label r = 0; r < regions_.size(); ++r) solid = solid || isSolidRegion(r);
+    if
+    (
+        !solid
+     && label(solidNode_.size()) == nNodes_
+     && label(subX_.size()) == 2*nNodes_
+    )
+    {
+        solidElement_.assign(elemTriangle_.size(), 0);
+        fluidLoad_.clear();
+        fluidLoadRate_.clear();
+        haveFluidLoad_ = false;
+        return;
+    }
     solidNode_.assign(nNodes_, 0);
     for (label r = 0; r < regions_.size(); ++r)
     {
@@ -1646,31 +1665,17 @@ void Foam::elementModel::removeTriangles
         }
         removedTriangle_[t] = true;
     }
-    // The probes' grid of the elements before: the elements left keep
-    // their order and their nodes, so it holds them renumbered
-    std::vector<label> oldTriangles;
-    if (locator_.version() == versionBefore) oldTriangles = elemTriangle_;
     // build(mesh) without the pass over the mesh's edges: 0.87 of the
     // conversions' time on Table 1's multi-resolution wedge, 57
-    // conversions of 53,120 elements (benchmarks/README.md)
-    removeRemovedElements();
-    buildFromNumbering();
-    if (!oldTriangles.empty())
-    {
-        // The new elements are the old ones less the removed, in the same
-        // order: one walk along both lists numbers them
-        label next = 0;
-        for (label& e : oldTriangles)
-        {
-            const bool kept =
-                next < nElements() && elemTriangle_[next] == e;
-            e = kept ? next++ : -1;
-        }
-        locator_.renumber
-        (
-            oldTriangles, nElements(), versionBefore, topologyVersion_
-        );
-    }
+    // conversions of 53,120 elements (benchmarks/README.md); nor the
+    // counting sort of the node lists
+    const std::vector<label> oldToNew = removeRemovedElements();
+    removeRemovedNodeElements(oldToNew);
+    buildReferenceGeometry();
+    buildSolidPartition();
+    // The probes' grid of the elements before: the elements left keep
+    // their order and their nodes, so it holds them renumbered
+    locator_.renumber(oldToNew, nElements(), versionBefore, topologyVersion_);
 
     // Nodes without elements rest: no mass, no momentum. In the current
     // state only: advance() writes the other buffer whole, and until then
@@ -1684,7 +1689,7 @@ void Foam::elementModel::removeTriangles
 }
 
 
-void Foam::elementModel::removeRemovedElements()
+std::vector<Foam::label> Foam::elementModel::removeRemovedElements()
 {
     // The elements left, renumbered in the same order: what
     // orderElements() makes of the new set (a subsequence of a list
@@ -1745,6 +1750,32 @@ void Foam::elementModel::removeRemovedElements()
     }
     domainElems_.resize(2*nDom);
     for (label& d : elemDomains_) d = newDomain[d];
+    return newElem;
+}
+
+
+void Foam::elementModel::removeRemovedNodeElements
+(
+    const std::vector<label>& oldToNew
+)
+{
+    // In place: a node's entries move to the front of what is left
+    label out = 0;
+    label begin = nodeElemStart_[0];
+    for (label n = 0; n < nNodes_; ++n)
+    {
+        const label end = nodeElemStart_[n + 1];
+        nodeElemStart_[n] = out;
+        for (label j = begin; j < end; ++j)
+        {
+            const label h = nodeElems_[j];
+            const label el = oldToNew[h/3];
+            if (el >= 0) nodeElems_[out++] = 3*el + h%3;
+        }
+        begin = end;
+    }
+    nodeElemStart_[nNodes_] = out;
+    nodeElems_.resize(out);
 }
 
 
