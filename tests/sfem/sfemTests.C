@@ -266,6 +266,7 @@ void expectRemovalGivesTheBuildsModel
     EXPECT_EQ(removed->nodeElementStart(), built->nodeElementStart());
     EXPECT_EQ(removed->nodeElements(), built->nodeElements());
     EXPECT_EQ(removed->elementMass(), built->elementMass());
+    EXPECT_EQ(removed->elementArea(), built->elementArea());
     EXPECT_EQ(removed->nodeMass(), built->nodeMass());
     EXPECT_EQ(removed->domainMass(), built->domainMass());
     EXPECT_EQ(removed->domainArea(), built->domainArea());

@@ -364,20 +364,14 @@ void Foam::elementModel::buildReferenceGeometry()
 {
     const label nReg = label(regions_.size());
     const label nTri = label(elemTriangle_.size());
-    const label nDom = label(domainElems_.size()/2);
     const std::vector<scalar>& density = initialDensity_;
 
     // Reference geometry, lumped masses, domain masses, solid time scale
     elemArea_.resize(nTri);
+    elemReferenceArea_.resize(nTri);
     elemMass_.resize(nTri);
-    elemAreaGrad_.assign(4*nTri, 0);
-    elemForce_.assign(6*nTri, 0);
+    clearElementState();
     nodeMass_.assign(nNodes_, 0);
-    domainArea_.assign(nDom, 0);
-    domainMass_.assign(nDom, 0);
-    domainGrad_.assign(4*nDom, 0);
-    domainGradBehind_ = false;   // as elemAreaGrad_: zero
-    domainStress_.assign(4*nDom, 0);
     solidTimeScale_ = std::numeric_limits<scalar>::max();
     solidLimit_ = stepLimit();
 
@@ -401,6 +395,7 @@ void Foam::elementModel::buildReferenceGeometry()
                 &X_[2*n[0]], &X_[2*n[1]], &X_[2*n[2]], AgradN
             );
             elemArea_[el] = A;
+            elemReferenceArea_[el] = A;
             elemMass_[el] = rho*A;
             for (label a = 0; a < 3; ++a) nodeMass_[n[a]] += rho*A/3;
             // A geometrically linear solid's stiffness never changes: its
@@ -415,19 +410,74 @@ void Foam::elementModel::buildReferenceGeometry()
                 );
             }
         }
-        for (label k = regions_[r].domainBegin; k < regions_[r].domainEnd; ++k)
+    }
+    domainAreasAndMasses();
+}
+
+
+void Foam::elementModel::clearElementState()
+{
+    const label nTri = label(elemTriangle_.size());
+    const label nDom = label(domainElems_.size()/2);
+    elemAreaGrad_.assign(4*nTri, 0);
+    elemForce_.assign(6*nTri, 0);
+    domainGrad_.assign(4*nDom, 0);
+    domainGradBehind_ = false;   // as elemAreaGrad_: zero
+    domainStress_.assign(4*nDom, 0);
+}
+
+
+void Foam::elementModel::domainAreasAndMasses()
+{
+    // A third of the areas and masses of a domain's elements (every
+    // domain: those of void regions have none)
+    const label nDom = label(domainElems_.size()/2);
+    domainArea_.resize(nDom);
+    domainMass_.resize(nDom);
+    for (label k = 0; k < nDom; ++k)
+    {
+        const label e0 = domainElems_[2*k], e1 = domainElems_[2*k + 1];
+        scalar A = elemArea_[e0], m = elemMass_[e0];
+        if (e1 >= 0)
         {
-            const label e0 = domainElems_[2*k], e1 = domainElems_[2*k + 1];
-            scalar A = elemArea_[e0], m = elemMass_[e0];
-            if (e1 >= 0)
+            A += elemArea_[e1];
+            m += elemMass_[e1];
+        }
+        domainArea_[k] = A/3;
+        domainMass_[k] = m/3;
+    }
+}
+
+
+void Foam::elementModel::referenceGeometryAfterRemoval
+(
+    const triMesh& mesh,
+    const std::vector<label>& triangles
+)
+{
+    // Each element left keeps its reference area and mass
+    // (removeRemovedElements() carried them along); the solid elements
+    // are those before, and so is their time scale. A node's mass is the
+    // sum of its elements' thirds in increasing element number, as the
+    // pass over the regions adds them: summed again at the nodes of the
+    // triangles taken out only, it is the same number
+    elemArea_ = elemReferenceArea_;
+    clearElementState();
+    const std::vector<label>& tri = mesh.triangles();
+    for (const label t : triangles)
+    {
+        for (label a = 0; a < 3; ++a)
+        {
+            const label n = tri[3*t + a];
+            scalar m = 0;
+            for (label j = nodeElemStart_[n]; j < nodeElemStart_[n + 1]; ++j)
             {
-                A += elemArea_[e1];
-                m += elemMass_[e1];
+                m += elemMass_[nodeElems_[j]/3]/3;
             }
-            domainArea_[k] = A/3;
-            domainMass_[k] = m/3;
+            nodeMass_[n] = m;
         }
     }
+    domainAreasAndMasses();
 }
 
 
@@ -1667,6 +1717,7 @@ void Foam::elementModel::removeTriangles
     }
     const label versionBefore = topologyVersion_;
     ++topologyVersion_;
+    bool fluidOnly = true;
     for (const label t : triangles)
     {
         if (t < 0 || t >= mesh.nTriangles() || removedTriangle_[t])
@@ -1676,14 +1727,24 @@ void Foam::elementModel::removeTriangles
                 << exit(FatalError);
         }
         removedTriangle_[t] = true;
+        const label r = mesh.triangleRegion()[t];
+        fluidOnly = fluidOnly && !isSolidRegion(r);
     }
     // build(mesh) without the pass over the mesh's edges: 0.87 of the
     // conversions' time on Table 1's multi-resolution wedge, 57
     // conversions of 53,120 elements (benchmarks/README.md); nor the
-    // counting sort of the node lists
+    // counting sort of the node lists, nor the reference geometry of every
+    // element when only fluid elements go
     const std::vector<label> oldToNew = removeRemovedElements();
     removeRemovedNodeElements(oldToNew);
-    buildReferenceGeometry();
+    if (fluidOnly)
+    {
+        referenceGeometryAfterRemoval(mesh, triangles);
+    }
+    else
+    {
+        buildReferenceGeometry();
+    }
     buildSolidPartition();
     // The probes' grid of the elements before: the elements left keep
     // their order and their nodes, so it holds them renumbered
@@ -1720,6 +1781,8 @@ std::vector<Foam::label> Foam::elementModel::removeRemovedElements()
             if (removedTriangle_[t]) continue;
             newElem[el] = nNew;
             elemTriangle_[nNew] = t;
+            elemMass_[nNew] = elemMass_[el];
+            elemReferenceArea_[nNew] = elemReferenceArea_[el];
             for (label a = 0; a < 3; ++a)
             {
                 elemNodes_[3*nNew + a] = elemNodes_[3*el + a];
@@ -1730,6 +1793,8 @@ std::vector<Foam::label> Foam::elementModel::removeRemovedElements()
         reg.elemEnd = nNew;
     }
     elemTriangle_.resize(nNew);
+    elemMass_.resize(nNew);
+    elemReferenceArea_.resize(nNew);
     elemNodes_.resize(3*nNew);
     elemDomains_.resize(3*nNew);
 
