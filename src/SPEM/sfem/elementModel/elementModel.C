@@ -1162,9 +1162,11 @@ bool Foam::elementModel::advance(const scalar dt)
     scalar* reaction = nodeReaction_.data();
 
     // Performance critical: every node, every step. In blocks of nodes,
-    // each with its largest speed (for the locator's bound) in a register:
-    // a reduction per node made each wait for the last (advance 1.1 times
-    // slower), a pass after the loop read the velocities again
+    // each with its largest speed (for the locator's bound) in a register
+    // (OpenMP's min reduction per node was no faster; a pass after the
+    // loop would read the velocities again): about 1.1 times the loop
+    // without it (elementStepBenchmark advanceOnly), against the pass over
+    // every node coordinate that currentLocator() no longer makes
     constexpr label block = 256;
     const label nBlocks = (nNodes_ + block - 1)/block;
     blockFastest_.resize(nBlocks);
