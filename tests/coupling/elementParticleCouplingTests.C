@@ -350,13 +350,18 @@ TEST(ElementParticleCoupling, balancedFluidGivesTheWholeFluidOneAcceleration)
     // velocities): the elements' interface forces are the same; what the
     // traction leaves over, D, comes back to every fluid particle and
     // every free node as the one acceleration -D/M. Where the interface
-    // meets a wall (the bottom a slip wall) nothing is spread and the
-    // imbalance is the traction's
-    for (const bool wall : {false, true})
+    // meets a wall the wall carries what it can: with the bottom a slip
+    // wall a part along its normal (y), that of the segments that end on
+    // it, and the rest is spread, all of D's x part with it; with the
+    // bottom a no-slip wall, which holds its nodes, all of D
+    const char* const cases[] =
+        {"no wall", "bottom a slip wall", "bottom a no-slip wall"};
+    for (const int wall : {0, 1, 2})
     {
-        SCOPED_TRACE(wall ? "bottom a slip wall" : "no wall");
+        SCOPED_TRACE(cases[wall]);
         std::map<std::string, patchType> patches;
-        if (wall) patches["bottom"] = patchType::slipWall;
+        if (wall == 1) patches["bottom"] = patchType::slipWall;
+        if (wall == 2) patches["bottom"] = patchType::noSlipWall;
         triMesh mesh = testMeshes::build({{0, 1, 0, 1, 12, 12, "water"}});
         const std::vector<scalar> v0 = blobVelocity(mesh);
         halves H
@@ -397,16 +402,30 @@ TEST(ElementParticleCoupling, balancedFluidGivesTheWholeFluidOneAcceleration)
         const scalar* spread = H.coupling->spread();
         const scalar* left = H.coupling->imbalance();
         const scalar tol = 1e-9*std::hypot(D[0], D[1]);
-        if (wall)
+        // The part spread, S, and the part the wall carries, D - S: with
+        // the slip wall all of D_x is spread, and the wall carries a part
+        // of D_y that is not all of it and not nothing (the junction
+        // segments' own)
+        const scalar S[2] =
         {
-            EXPECT_LT(std::hypot(spread[0], spread[1]), tol);
-            EXPECT_NEAR(left[0], D[0], tol);
-            EXPECT_NEAR(left[1], D[1], tol);
-            continue;
+            wall == 2 ? 0 : D[0], wall == 2 ? 0 : spread[1]
+        };
+        if (wall == 0)
+        {
+            EXPECT_NEAR(spread[1], D[1], tol);
         }
-        EXPECT_NEAR(spread[0], D[0], tol);
-        EXPECT_NEAR(spread[1], D[1], tol);
-        EXPECT_LT(std::hypot(left[0], left[1]), tol);
+        if (wall == 1)
+        {
+            ASSERT_GT(std::abs(D[0]), 1e-3*std::abs(D[1]))
+                << "no tangential part to spread";
+            EXPECT_GT(std::abs(left[1]), 1e-3*std::abs(D[1]));
+            EXPECT_GT(std::abs(spread[1]), 1e-3*std::abs(D[1]));
+        }
+        EXPECT_NEAR(spread[0], S[0], tol);
+        EXPECT_NEAR(spread[1], S[1], tol);
+        EXPECT_NEAR(left[0], D[0] - S[0], tol);
+        EXPECT_NEAR(left[1], D[1] - S[1], tol);
+        if (wall == 2) continue;
 
         const particleSet& ps = H.particles->particles();
         const elementModel& em = *H.elements;
@@ -416,8 +435,8 @@ TEST(ElementParticleCoupling, balancedFluidGivesTheWholeFluidOneAcceleration)
             if (ps.kinds()[i] == particleSet::kind::fluid) M += ps.mass()[i];
         }
         for (label n = 0; n < em.nNodes(); ++n) M += em.nodeMass()[n];
-        const scalar a[2] = {-D[0]/M, -D[1]/M};
-        const scalar aTol = 1e-9*std::hypot(a[0], a[1]);
+        const scalar a[2] = {-S[0]/M, -S[1]/M};
+        const scalar aTol = 1e-9*std::hypot(D[0], D[1])/M;
         label nFluid = 0;
         for (label i = 0; i < ps.size(); ++i)
         {
@@ -446,10 +465,63 @@ TEST(ElementParticleCoupling, balancedFluidGivesTheWholeFluidOneAcceleration)
         }
         std::printf
         (
-            "balancedFluid, the free blob after 200 steps: D = (%.4g %.4g) N"
-            " over M = %.4g kg; every particle and node gets (%.4g %.4g)"
-            " m/s^2\n", D[0], D[1], M, a[0], a[1]
+            "balancedFluid, the blob after 200 steps, %s: D = (%.4g %.4g)"
+            " N, spread over M = %.4g kg: every particle and node gets"
+            " (%.4g %.4g) m/s^2\n", cases[wall], D[0], D[1], M, a[0], a[1]
         );
+    }
+}
+
+
+TEST(ElementParticleCoupling, wallsCarryTheNormalPartOfAJunctionsDifference)
+{
+    // balancedFluid's split of a slip-wall junction's difference D: slip
+    // walls of one direction carry its normal part, walls of two
+    // directions all of it
+    const scalar D[2] = {3, -4};
+    const auto nnT = [](const scalar degrees, scalar N[3])
+    {
+        const scalar a = degrees*constant::mathematical::pi/180;
+        const scalar nx = std::cos(a), ny = std::sin(a);
+        N[0] += nx*nx;
+        N[1] += nx*ny;
+        N[2] += ny*ny;
+    };
+    scalar carried[2];
+    for (const scalar degrees : {0.0, 30.0, 90.0, 135.0})
+    {
+        SCOPED_TRACE(degrees);
+        scalar N[3] = {0, 0, 0};
+        nnT(degrees, N);
+        nnT(degrees + 180, N);  // the same wall, the other side's normal
+        elementParticleCoupling::wallPart(N, D, carried);
+        const scalar a = degrees*constant::mathematical::pi/180;
+        const scalar n[2] = {std::cos(a), std::sin(a)};
+        const scalar Dn = D[0]*n[0] + D[1]*n[1];
+        EXPECT_NEAR(carried[0], Dn*n[0], 1e-12);
+        EXPECT_NEAR(carried[1], Dn*n[1], 1e-12);
+    }
+    // Two walls: 0.5 degree apart one direction (the mean's), 2 degrees
+    // and 90 degrees apart two
+    {
+        scalar N[3] = {0, 0, 0};
+        nnT(10, N);
+        nnT(10.5, N);
+        elementParticleCoupling::wallPart(N, D, carried);
+        const scalar a = 10.25*constant::mathematical::pi/180;
+        const scalar Dn = D[0]*std::cos(a) + D[1]*std::sin(a);
+        EXPECT_NEAR(carried[0], Dn*std::cos(a), 1e-9);
+        EXPECT_NEAR(carried[1], Dn*std::sin(a), 1e-9);
+    }
+    for (const scalar apart : {2.0, 90.0})
+    {
+        SCOPED_TRACE(apart);
+        scalar N[3] = {0, 0, 0};
+        nnT(10, N);
+        nnT(10 + apart, N);
+        elementParticleCoupling::wallPart(N, D, carried);
+        EXPECT_EQ(carried[0], D[0]);
+        EXPECT_EQ(carried[1], D[1]);
     }
 }
 

@@ -165,16 +165,33 @@ void Foam::elementParticleCoupling::update
     nodePressure_.assign(elements.nNodes(), 0);
     nodeReached_.assign(elements.nNodes(), 0);
 
-    // The nodes on a wall patch (balancedFluid)
+    // The nodes on a wall patch (balancedFluid): 2 on a patch that holds
+    // its nodes (noSlipWall, clamped), else 1 on a slipWall, with the sum
+    // n n^T of the unit normals of its slip-wall sides
     wallNode_.assign(mesh.nPoints(), 0);
+    wallNormals_.assign(3*mesh.nPoints(), 0);
+    const std::vector<scalar>& x = mesh.points();
     for (label s = 0; s < mesh.nSegments(); ++s)
     {
-        if (patchTypes[mesh.segmentPatch()[s]] == patchType::freeSurface)
+        const patchType type = patchTypes[mesh.segmentPatch()[s]];
+        if (type == patchType::freeSurface) continue;
+        const label a = mesh.segments()[2*s], b = mesh.segments()[2*s + 1];
+        if (type != patchType::slipWall)
         {
+            wallNode_[a] = wallNode_[b] = 2;
             continue;
         }
-        wallNode_[mesh.segments()[2*s]] = 1;
-        wallNode_[mesh.segments()[2*s + 1]] = 1;
+        const scalar tx = x[2*b] - x[2*a], ty = x[2*b + 1] - x[2*a + 1];
+        const scalar l2 = tx*tx + ty*ty;
+        if (!(l2 > 0)) continue;
+        for (const label n : {a, b})
+        {
+            if (!wallNode_[n]) wallNode_[n] = 1;
+            // n = (ty, -tx)/l: n n^T
+            wallNormals_[3*n] += ty*ty/l2;
+            wallNormals_[3*n + 1] -= tx*ty/l2;
+            wallNormals_[3*n + 2] += tx*tx/l2;
+        }
     }
 
     // The connected interfaces: segments that share a node, by union-find
@@ -1126,6 +1143,36 @@ void Foam::elementParticleCoupling::balanceParticles
 }
 
 
+bool Foam::elementParticleCoupling::markComponentsAtWalls()
+{
+    componentAtWall_.assign(nComponents_, 0);
+    componentNormals_.assign(3*nComponents_, 0);
+    junctionNodes_.clear();
+    bool anyAtWall = false;
+    for (label s = 0; s < nInterfaceSegments(); ++s)
+    {
+        const label c = segmentComponent_[s];
+        for (label k = 0; k < 2; ++k)
+        {
+            const label n = segments_[2*s + k];
+            if (wallNode_[n] && nodeReached_[n])
+            {
+                junctionNodes_.push_back(c);
+                junctionNodes_.push_back(n);
+                componentAtWall_[c] =
+                    std::max(componentAtWall_[c], wallNode_[n]);
+                anyAtWall = true;
+                for (label d = 0; d < 3; ++d)
+                {
+                    componentNormals_[3*c + d] += wallNormals_[3*n + d];
+                }
+            }
+        }
+    }
+    return anyAtWall;
+}
+
+
 void Foam::elementParticleCoupling::spreadImbalance
 (
     elementModel& elements,
@@ -1144,30 +1191,55 @@ void Foam::elementParticleCoupling::spreadImbalance
     // reach; free-surface sides join an interface to walls far from any
     // particle): the sum of T_s - R_s over their segments, R_s the
     // particles' ghost forces shared to the segments as interfaceReaction
-    // shares them
+    // shares them; of that, what the walls can carry (wallPart): all of it
+    // where a wall holds the junction's nodes; where the junction's walls
+    // are slip walls, the normal part of the corner's difference (below).
+    // The rest is spread
     const label nSegments = nInterfaceSegments();
-    componentAtWall_.assign(nComponents_, 0);
-    bool anyAtWall = false;
-    for (label s = 0; s < nSegments; ++s)
-    {
-        for (label k = 0; k < 2; ++k)
-        {
-            const label n = segments_[2*s + k];
-            if (wallNode_[n] && nodeReached_[n])
-            {
-                componentAtWall_[segmentComponent_[s]] = 1;
-                anyAtWall = true;
-            }
-        }
-    }
-    if (anyAtWall)
+    if (markComponentsAtWalls())
     {
         shareGhostForces(elements, particles);
+        // The corner's part of a slip-wall junction: each segment's
+        // difference weighted by the kernel's shape, w(q) = (1 - q)^4
+        // (1 + 4q), of its midpoint's distance from the nearest junction
+        // node over the particles' pair reach kappa h_max
+        const scalar R =
+            particles.kernel().support()*ps.maxSmoothingLength();
+        const std::vector<scalar>& x = elements.positions();
+        junctionSum_.assign(2*nComponents_, 0);
         for (label s = 0; s < nSegments; ++s)
         {
-            if (!componentAtWall_[segmentComponent_[s]]) continue;
-            D[0] -= segmentForce_[2*s] - reactionForce_[2*s];
-            D[1] -= segmentForce_[2*s + 1] - reactionForce_[2*s + 1];
+            const label c = segmentComponent_[s];
+            const scalar Dx = segmentForce_[2*s] - reactionForce_[2*s];
+            const scalar Dy = segmentForce_[2*s + 1] - reactionForce_[2*s + 1];
+            if (componentAtWall_[c] == 2)
+            {
+                D[0] -= Dx;
+                D[1] -= Dy;
+                continue;
+            }
+            if (componentAtWall_[c] != 1) continue;
+            const label P = segments_[2*s], Q = segments_[2*s + 1];
+            const scalar mx = 0.5*(x[2*P] + x[2*Q]);
+            const scalar my = 0.5*(x[2*P + 1] + x[2*Q + 1]);
+            scalar w = 0;
+            for (std::size_t k = 0; k < junctionNodes_.size(); k += 2)
+            {
+                if (junctionNodes_[k] != c) continue;
+                const label J = junctionNodes_[k + 1];
+                const scalar q = std::hypot(mx - x[2*J], my - x[2*J + 1])/R;
+                if (q < 1) w = std::max(w, pow4(1 - q)*(1 + 4*q));
+            }
+            junctionSum_[2*c] += w*Dx;
+            junctionSum_[2*c + 1] += w*Dy;
+        }
+        for (label c = 0; c < nComponents_; ++c)
+        {
+            if (componentAtWall_[c] != 1) continue;
+            scalar carried[2];
+            wallPart(&componentNormals_[3*c], &junctionSum_[2*c], carried);
+            D[0] -= carried[0];
+            D[1] -= carried[1];
         }
     }
 
@@ -1227,6 +1299,40 @@ void Foam::elementParticleCoupling::spreadImbalance
     }
     added[0] += spreadNodeMass_*a[0];
     added[1] += spreadNodeMass_*a[1];
+}
+
+
+void Foam::elementParticleCoupling::wallPart
+(
+    const scalar N[3],
+    const scalar D[2],
+    scalar carried[2]
+)
+{
+    carried[0] = D[0];
+    carried[1] = D[1];
+    // N = sum n n^T: its larger eigenvalue's direction is the normal; the
+    // walls span one direction if the smaller is below 1e-4 of it (for two
+    // normals at angle theta the ratio is tan^2(theta/2): theta below
+    // 1.15 degrees)
+    const scalar mean = 0.5*(N[0] + N[2]);
+    const scalar half = 0.5*(N[0] - N[2]);
+    const scalar radius = std::sqrt(half*half + N[1]*N[1]);
+    const scalar larger = mean + radius, smaller = mean - radius;
+    if (!(larger > 0) || smaller > 1e-4*larger) return;
+    // Eigenvector of the larger eigenvalue
+    scalar nx = N[1], ny = larger - N[0];
+    if (half > 0)
+    {
+        nx = larger - N[2];
+        ny = N[1];
+    }
+    const scalar l = std::sqrt(nx*nx + ny*ny);
+    nx /= l;
+    ny /= l;
+    const scalar Dn = D[0]*nx + D[1]*ny;
+    carried[0] = Dn*nx;
+    carried[1] = Dn*ny;
 }
 
 
