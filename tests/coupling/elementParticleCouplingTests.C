@@ -351,9 +351,9 @@ TEST(ElementParticleCoupling, balancedFluidGivesTheWholeFluidOneAcceleration)
     // traction leaves over, D, comes back to every fluid particle and
     // every free node as the one acceleration -D/M. Where the interface
     // meets a wall the wall carries what it can: with the bottom a slip
-    // wall a part along its normal (y), that of the segments that end on
-    // it, and the rest is spread, all of D's x part with it; with the
-    // bottom a no-slip wall, which holds its nodes, all of D
+    // wall the part along its normal (y) of the corners' difference, and
+    // the rest is spread, all of D's x part with it; with the bottom a
+    // no-slip wall, which holds its nodes, all of D
     const char* const cases[] =
         {"no wall", "bottom a slip wall", "bottom a no-slip wall"};
     for (const int wall : {0, 1, 2})
@@ -404,8 +404,7 @@ TEST(ElementParticleCoupling, balancedFluidGivesTheWholeFluidOneAcceleration)
         const scalar tol = 1e-9*std::hypot(D[0], D[1]);
         // The part spread, S, and the part the wall carries, D - S: with
         // the slip wall all of D_x is spread, and the wall carries a part
-        // of D_y that is not all of it and not nothing (the junction
-        // segments' own)
+        // of D_y that is not all of it and not nothing (the corners')
         const scalar S[2] =
         {
             wall == 2 ? 0 : D[0], wall == 2 ? 0 : spread[1]
