@@ -241,15 +241,17 @@ void expectRemovalGivesTheBuildsModel
     {
         for (const label t : round) out[t] = true;
     }
-    for (label t = 0, k = 0; t < mesh.nTriangles(); ++t)
+    // Every n-th of the triangles not taken out yet
+    const auto everyNthLeft = [&](const label n, std::vector<label>& round)
     {
-        if (!out[t] && ++k % 5 == 0) rounds[2].push_back(t);
-    }
-    for (const label t : rounds[2]) out[t] = true;
-    for (label t = 0, k = 0; t < mesh.nTriangles(); ++t)
-    {
-        if (!out[t] && ++k % 7 == 0) rounds[3].push_back(t);
-    }
+        for (label t = 0, k = 0; t < mesh.nTriangles(); ++t)
+        {
+            if (!out[t] && ++k % n == 0) round.push_back(t);
+        }
+        for (const label t : round) out[t] = true;
+    };
+    everyNthLeft(5, rounds[2]);
+    everyNthLeft(7, rounds[3]);
 
     std::vector<label> all;
     for (const auto& round : rounds)

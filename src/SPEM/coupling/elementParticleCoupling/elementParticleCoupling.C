@@ -1200,9 +1200,10 @@ void Foam::elementParticleCoupling::spreadImbalance
     {
         shareGhostForces(elements, particles);
         // The corner's part of a slip-wall junction: each segment's
-        // difference weighted by the kernel's shape, w(q) = (1 - q)^4
-        // (1 + 4q), of its midpoint's distance from the nearest junction
-        // node over the particles' pair reach kappa h_max
+        // difference weighted by the Wendland C2 kernel's shape (whichever
+        // kernel the particles use), w(q) = (1 - q)^4 (1 + 4q), of its
+        // midpoint's distance from the nearest junction node over the
+        // particles' pair reach kappa h_max
         const scalar R =
             particles.kernel().support()*ps.maxSmoothingLength();
         const std::vector<scalar>& x = elements.positions();
